@@ -1,0 +1,160 @@
+#pragma once
+// The scene model shared by every renderer in bounce: the GPU techniques and the CPU reference read
+// the same Scene, so lights, materials and units mean the same thing on both sides.
+//
+// Units (see docs/scene.md):
+//   length            metres
+//   time              seconds (animation keyframes)
+//   Light::intensity  radiant intensity, W/sr per RGB channel (point; spot on its axis)
+//   Light::irradiance irradiance on a surface facing the light, W/m^2 (directional)
+//   Light::radiance   emitted radiance, W/(m^2 sr) (rectangular area light, one-sided, Lambertian)
+//   Material::emission emitted radiance, W/(m^2 sr)
+// The BRDF is fixed by docs/scene.md "Materials": Lambert (baseColor/pi, scaled by 1-metallic) plus
+// GGX/Smith/Schlick specular with F0 = mix(specularF0, baseColor, metallic) and alpha = roughness^2.
+#include "core/Image.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace bounce {
+
+// Indexed triangle mesh in object space. normals and uvs are empty or one per position.
+struct Mesh {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> indices;  // 3 per triangle
+
+    size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// A texture decoded to linear RGB (sRGB-encoded base-colour files are decoded on load).
+struct TextureImage {
+    std::string name;  // file path or generated name, for messages
+    Image image;
+};
+
+struct Material {
+    std::string name;
+    glm::vec3 baseColor{0.8f};       // albedo of the diffuse lobe (linear RGB, in [0,1])
+    int baseColorTexture = -1;       // index into Scene::textures, multiplied with baseColor
+    glm::vec3 emission{0.0f};        // emitted radiance, W/(m^2 sr)
+    float roughness = 1.0f;          // perceptual roughness; GGX alpha = roughness^2
+    float metallic = 0.0f;
+    float specularF0 = 0.0f;         // dielectric reflectance at normal incidence (0 = pure Lambert)
+    bool twoSided = false;           // shade back faces with the flipped normal
+};
+
+// Keyframed rigid transform. Translation is interpolated linearly or with Catmull-Rom splines,
+// rotation by slerp, scale linearly. Times are seconds; outside the key range the ends are held,
+// or the track wraps when `loop` is set.
+struct TransformKey {
+    float time = 0.0f;
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::vec3 scale{1.0f};
+};
+
+enum class Interpolation { Linear, CatmullRom };
+
+struct TransformTrack {
+    std::vector<TransformKey> keys;  // sorted by time
+    Interpolation interpolation = Interpolation::Linear;
+    bool loop = true;
+
+    bool empty() const { return keys.empty(); }
+    float duration() const { return keys.empty() ? 0.0f : keys.back().time - keys.front().time; }
+    // The transform at time t; identity when empty.
+    glm::mat4 evaluate(float t) const;
+};
+
+// A placed mesh. worldFromObject(t) = animation(t) * transform.
+struct Object {
+    std::string name;
+    uint32_t mesh = 0;
+    uint32_t material = 0;
+    glm::mat4 transform{1.0f};
+    TransformTrack animation;
+
+    bool isDynamic() const { return !animation.empty(); }
+    glm::mat4 worldFromObject(float t) const { return animation.empty() ? transform : animation.evaluate(t) * transform; }
+};
+
+enum class LightType { Point, Spot, Directional, Area };
+
+// Spot: I(alpha) = intensity * cos(alpha)^falloffExponent for alpha < cutoffAngle, else 0,
+// alpha measured from `direction` (the cosine-power spot the papers use; exponent 1 and cutoff 90 deg
+// is Laine et al.'s "180 degree cosine spot", whose flux is pi * intensity).
+// Area: rectangle centred at `position` with full edge vectors `edgeU`, `edgeV`; it emits `radiance`
+// from the side of normalize(cross(edgeU, edgeV)) only.
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot axis, directional propagation direction
+    glm::vec3 intensity{0.0f};               // W/sr (point, spot)
+    glm::vec3 irradiance{0.0f};              // W/m^2 (directional)
+    glm::vec3 radiance{0.0f};                // W/(m^2 sr) (area)
+    float cutoffAngle = 1.5707964f;          // radians, spot half-angle
+    float falloffExponent = 1.0f;            // spot cosine power
+    glm::vec3 edgeU{1.0f, 0.0f, 0.0f};       // area light edges (metres)
+    glm::vec3 edgeV{0.0f, 0.0f, 1.0f};
+    TransformTrack animation;                // moves position, direction and edges
+
+    bool isDynamic() const { return !animation.empty(); }
+    // The light with its animation applied at time t.
+    Light at(float t) const;
+    glm::vec3 areaNormal() const;
+    float area() const;
+    // Total emitted flux in W (per channel): point 4*pi*I, spot integral of I over its cone,
+    // area pi*L*A, directional has none (infinite) and returns 0.
+    glm::vec3 flux() const;
+};
+
+enum class Projection { Perspective, Orthographic };
+
+struct Camera {
+    glm::vec3 position{0.0f, 0.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    Projection projection = Projection::Perspective;
+    float verticalFov = 0.6981317f;  // radians (40 degrees), perspective
+    float orthoHeight = 2.0f;        // metres, orthographic view height
+    float nearPlane = 0.01f;         // metres
+    float farPlane = 100.0f;         // metres
+    TransformTrack animation;        // moves position and target
+
+    Camera at(float t) const;
+    glm::mat4 viewFromWorld() const;
+    glm::mat4 clipFromView(float aspect) const;  // OpenGL clip space, depth -1..1
+};
+
+struct Scene {
+    std::string name;
+    std::string source;  // file path, or "builtin:NAME"
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<TextureImage> textures;
+    std::vector<Object> objects;
+    std::vector<Light> lights;
+    Camera camera;
+    float frameRate = 30.0f;  // frames per second of `bounce render --frames`
+    // Default technique settings from the scene file, "technique.setting" -> value text.
+    std::map<std::string, std::string> settings;
+
+    size_t triangleCount() const;
+    bool hasEmissiveMaterials() const;
+    float timeOfFrame(uint32_t frame) const { return static_cast<float>(frame) / frameRate; }
+    // Axis-aligned bounds of all objects at time t.
+    void bounds(float t, glm::vec3& lo, glm::vec3& hi) const;
+};
+
+}  // namespace bounce

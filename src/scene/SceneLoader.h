@@ -1,0 +1,38 @@
+#pragma once
+// Where scenes come from: built-in procedural scenes (no files needed), JSON scene files that place
+// models, lights, camera and animations, and model files read through assimp (glTF 2.0 with
+// KHR_lights_punctual and cameras, OBJ/MTL, PLY).
+#include "core/Error.h"
+#include "scene/Scene.h"
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bounce {
+
+using SceneParams = std::map<std::string, std::string>;
+
+struct BuiltinSceneInfo {
+    std::string name;
+    std::string description;
+    // Parameters the scene accepts (name -> "default: doc").
+    std::map<std::string, std::string> params;
+};
+
+const std::vector<BuiltinSceneInfo>& builtinScenes();
+
+// `nameOrPath` is a built-in name (see builtinScenes()) or a file: *.json scene files, or a model
+// file (.gltf .glb .obj .ply) placed at the origin with its own lights/camera (or defaults).
+// `params` are built-in scene parameters (e.g. atrium's "triangles"); unknown ones are errors.
+// The returned scene has passed finalizeScene().
+Expected<Scene> loadScene(std::string_view nameOrPath, const SceneParams& params = {});
+
+// Validates a scene and fills derived data. Errors (non-finite values, indices out of range,
+// meshes whose every triangle is degenerate, bad light or camera parameters) name the object.
+// Degenerate triangles in otherwise valid meshes are dropped with a warning; missing normals are
+// computed (area-weighted vertex normals).
+Expected<void> finalizeScene(Scene& scene);
+
+}  // namespace bounce
