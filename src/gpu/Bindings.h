@@ -1,0 +1,49 @@
+// Binding points shared by C++ and GLSL. ShaderLibrary prepends this file to every shader, and C++
+// includes it, so an index is written exactly once. Plain #defines only (valid in both languages).
+#ifndef BOUNCE_BINDINGS_H
+#define BOUNCE_BINDINGS_H
+
+// Uniform buffers
+#define BINDING_UBO_FRAME 0    // FrameUniforms: camera matrices, viewport, time
+#define BINDING_UBO_VIEW 1     // ViewUniforms: the view a SceneDrawer pass renders from
+#define BINDING_UBO_LIGHT 2    // LightUniforms: one light for a shading or shadow pass
+#define BINDING_UBO_PASS 3     // per-pass parameters owned by a technique
+
+// Shader storage buffers
+#define BINDING_SSBO_OBJECTS 0    // ObjectGpu[]: worldFromObject, normal matrix, material index
+#define BINDING_SSBO_MATERIALS 1  // MaterialGpu[]
+#define BINDING_SSBO_TECH0 4      // technique-owned buffers start here
+#define BINDING_SSBO_TECH1 5
+#define BINDING_SSBO_TECH2 6
+#define BINDING_SSBO_TECH3 7
+
+// Texture units
+#define BINDING_TEX_BASECOLOR 0   // sampler2DArray of all base-colour textures
+#define BINDING_TEX_GBUF_DEPTH 1
+#define BINDING_TEX_GBUF_NORMAL 2
+#define BINDING_TEX_GBUF_ALBEDO 3
+#define BINDING_TEX_GBUF_MATERIAL 4
+#define BINDING_TEX_SHADOW 5      // the current light's shadow map (2D)
+#define BINDING_TEX_SHADOW_CUBE 6 // the current light's cube shadow map (point, area)
+#define BINDING_TEX_INPUT0 8      // generic inputs of full-screen passes
+#define BINDING_TEX_INPUT1 9
+#define BINDING_TEX_INPUT2 10
+#define BINDING_TEX_INPUT3 11
+#define BINDING_TEX_TECH0 12      // technique-owned textures start here
+#define BINDING_TEX_TECH1 13
+#define BINDING_TEX_TECH2 14
+#define BINDING_TEX_TECH3 15
+
+// Image units
+#define BINDING_IMG0 0
+#define BINDING_IMG1 1
+#define BINDING_IMG2 2
+#define BINDING_IMG3 3
+
+// Vertex attribute locations
+#define ATTR_POSITION 0
+#define ATTR_NORMAL 1
+#define ATTR_UV 2
+#define ATTR_OBJECT_INDEX 3  // per-instance; the draw's baseInstance selects the object
+
+#endif
