@@ -19,10 +19,10 @@
 
 // Texture units
 #define BINDING_TEX_BASECOLOR 0   // sampler2DArray of all base-colour textures
-#define BINDING_TEX_GBUF_DEPTH 1
+#define BINDING_TEX_GBUF_POSITION 1
 #define BINDING_TEX_GBUF_NORMAL 2
 #define BINDING_TEX_GBUF_ALBEDO 3
-#define BINDING_TEX_GBUF_MATERIAL 4
+#define BINDING_TEX_GBUF_EMISSION 4
 #define BINDING_TEX_SHADOW 5      // the current light's shadow map (2D)
 #define BINDING_TEX_SHADOW_CUBE 6 // the current light's cube shadow map (point, area)
 #define BINDING_TEX_INPUT0 8      // generic inputs of full-screen passes

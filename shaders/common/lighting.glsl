@@ -1,0 +1,86 @@
+// Direct light from bounce's four light types (docs/scene.md "Lights"), with shadow-map visibility.
+//   point:       E = I cos(theta) / r^2
+//   spot:        I(alpha) = I0 cos^n(alpha) for alpha < cutoff (cos clamped at 0), else 0
+//   directional: E = E_perp cos(theta)
+//   area:        one-sided Lambertian rectangle of radiance L; diffuse irradiance from the exact
+//                polygon (Lambert's contour) formula E = L/2 sum_i theta_i (n . gamma_i) after
+//                clipping the rectangle to the receiver's hemisphere; visibility from the centre.
+// Inputs: u_light (BINDING_UBO_LIGHT), s_shadow / s_shadowCube (BINDING_TEX_SHADOW[_CUBE]).
+#include "common/shared.h"
+#include "common/constants.glsl"
+
+layout(std140, binding = BINDING_UBO_LIGHT) uniform LightBlock { LightGpu u_light; };
+layout(binding = BINDING_TEX_SHADOW) uniform sampler2DShadow s_shadow;
+layout(binding = BINDING_TEX_SHADOW_CUBE) uniform samplerCube s_shadowCube;
+
+int lightType(LightGpu L) { return int(L.position.w + 0.5); }
+
+// Radiant intensity (W/sr) towards x divided by r^2, or E_perp for directional lights: the
+// irradiance at x on a surface facing the light. l receives the unit direction to the light.
+vec3 punctualIrradiance(LightGpu L, vec3 x, out vec3 l) {
+    int type = lightType(L);
+    if (type == LIGHT_DIRECTIONAL) {
+        l = -normalize(L.direction.xyz);
+        return L.emission.rgb;
+    }
+    vec3 d = L.position.xyz - x;
+    float r2 = max(dot(d, d), 1e-12);
+    l = d * inversesqrt(r2);
+    vec3 intensity = L.emission.rgb;
+    if (type == LIGHT_SPOT) {
+        float cosAlpha = dot(-l, normalize(L.direction.xyz));
+        if (cosAlpha < L.direction.w || cosAlpha <= 0.0) return vec3(0.0);
+        intensity *= pow(cosAlpha, L.emission.w);
+    }
+    return intensity / r2;
+}
+
+float shadowVisibility(LightGpu L, vec3 x, vec3 n) {
+    int kind = int(L.edgeU.w + 0.5);
+    if (kind == 0) return 1.0;
+    vec3 p = x + n * L.edgeV.w;  // normal-offset bias (metres)
+    if (kind == 2) {
+        vec3 d = p - L.shadowOrigin.xyz;
+        float stored = texture(s_shadowCube, d).r * L.shadowParams.x;
+        return length(d) <= stored ? 1.0 : 0.0;
+    }
+    vec4 c = L.shadowClipFromWorld * vec4(p, 1.0);
+    vec3 ndc = c.xyz / c.w;
+    vec3 uvz = ndc * 0.5 + 0.5;
+    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))) || uvz.z > 1.0) return 1.0;
+    int radius = int(L.shadowParams.z + 0.5);
+    float texel = 1.0 / L.shadowParams.y;
+    float sum = 0.0;
+    for (int j = -radius; j <= radius; ++j)
+        for (int i = -radius; i <= radius; ++i) sum += texture(s_shadow, vec3(uvz.xy + vec2(i, j) * texel, uvz.z));
+    float taps = float((2 * radius + 1) * (2 * radius + 1));
+    return sum / taps;
+}
+
+// Irradiance at x (normal n) from the one-sided rectangle, unshadowed.
+vec3 areaIrradiance(LightGpu L, vec3 x, vec3 n) {
+    vec3 nl = normalize(cross(L.edgeU.xyz, L.edgeV.xyz));
+    vec3 c = L.position.xyz;
+    if (dot(x - c, nl) <= 0.0) return vec3(0.0);  // behind the emitting side
+    vec3 hu = 0.5 * L.edgeU.xyz, hv = 0.5 * L.edgeV.xyz;
+    vec3 quad[4] = vec3[4](c - hu - hv - x, c + hu - hv - x, c + hu + hv - x, c - hu + hv - x);
+    // Sutherland-Hodgman clip against the receiver's tangent plane (keep dot(n, v) >= 0).
+    vec3 poly[5];
+    int count = 0;
+    for (int i = 0; i < 4; ++i) {
+        vec3 a = quad[i], b = quad[(i + 1) % 4];
+        float da = dot(n, a), db = dot(n, b);
+        if (da >= 0.0 && count < 5) poly[count++] = a;
+        if ((da >= 0.0) != (db >= 0.0) && count < 5) poly[count++] = a + (b - a) * (da / (da - db));
+    }
+    if (count < 3) return vec3(0.0);
+    float sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+        vec3 a = normalize(poly[i]), b = normalize(poly[(i + 1) % count]);
+        float cosTheta = clamp(dot(a, b), -1.0, 1.0);
+        vec3 g = cross(a, b);
+        float len = length(g);
+        if (len > 1e-9) sum += acos(cosTheta) * dot(n, g / len);
+    }
+    return L.emission.rgb * 0.5 * abs(sum);
+}

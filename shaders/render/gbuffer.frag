@@ -1,0 +1,38 @@
+// G-buffer (deferred shading input). Inputs: render/scene.vert outputs, materials.
+// Outputs (all linear): 0 position (xyz world, w = 1 where covered), 1 normal (xyz world shading
+// normal facing the viewer for two-sided materials, w = roughness), 2 albedo (rgb; 0 on back faces
+// of one-sided materials, which occlude but reflect nothing; w = metallic), 3 emission (rgb
+// radiance W/(m^2 sr), front faces only; w = specularF0).
+#include "common/scene.glsl"
+
+in vec3 v_posWorld;
+in vec3 v_normalWorld;
+in vec2 v_uv;
+flat in uint v_object;
+
+layout(location = 0) out vec4 o_position;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_albedo;
+layout(location = 3) out vec4 o_emission;
+
+void main() {
+    uint material = u_objects[v_object].info.x;
+    MaterialGpu m = u_materials[material];
+    vec3 n = normalize(v_normalWorld);
+    bool twoSided = m.params.w > 0.5;
+    bool back = !gl_FrontFacing;
+    vec3 albedo = materialAlbedo(material, v_uv);
+    vec3 emission = m.emission.rgb;
+    if (back) {
+        if (twoSided) {
+            n = -n;
+        } else {
+            albedo = vec3(0.0);
+            emission = vec3(0.0);
+        }
+    }
+    o_position = vec4(v_posWorld, 1.0);
+    o_normal = vec4(n, m.params.x);
+    o_albedo = vec4(albedo, m.params.y);
+    o_emission = vec4(emission, m.params.z);
+}

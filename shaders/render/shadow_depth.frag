@@ -1,0 +1,3 @@
+// Depth-only pass for 2D shadow maps (spot: perspective, directional: orthographic).
+// Inputs: render/scene.vert. Outputs: depth only.
+void main() {}

@@ -1,0 +1,53 @@
+#pragma once
+// Settings declared once. A settings struct lists its fields in visit(SettingsVisitor&) with name,
+// doc and range; the same list drives parsing (--set name=value), `bounce list`, the run record and
+// the viewer UI. An unknown name is an error that lists the known ones.
+#include "core/Error.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bounce {
+
+class SettingsVisitor {
+public:
+    virtual ~SettingsVisitor() = default;
+    virtual void field(std::string_view name, bool& value, std::string_view doc) = 0;
+    virtual void field(std::string_view name, int& value, std::string_view doc, int min, int max) = 0;
+    virtual void field(std::string_view name, float& value, std::string_view doc, float min, float max) = 0;
+    // A choice among named options (an enum kept as its name).
+    virtual void field(std::string_view name, std::string& value, std::string_view doc,
+                       std::span<const std::string_view> choices) = 0;
+};
+
+// Anything with visit(SettingsVisitor&).
+class Configurable {
+public:
+    virtual ~Configurable() = default;
+    virtual void visitSettings(SettingsVisitor& visitor) = 0;
+};
+
+struct SettingDescription {
+    std::string name, type, defaultValue, doc, range;
+};
+
+// The declared settings of `target` with their current values as defaults.
+std::vector<SettingDescription> describeSettings(Configurable& target);
+
+// Applies name=value pairs. `context` names the owner in messages ("technique 'rsm'").
+// Errors: unknown name (lists known names), unparsable value, value out of range.
+Expected<void> applySettings(Configurable& target, const std::map<std::string, std::string>& values,
+                             std::string_view context);
+
+// Current values as a JSON object (for run records).
+nlohmann::json settingsToJson(Configurable& target);
+
+// Splits "name=value" (for --set); errors name the offending text.
+Expected<std::pair<std::string, std::string>> parseAssignment(std::string_view text);
+
+}  // namespace bounce

@@ -1,0 +1,60 @@
+#pragma once
+// Per-pass GPU times from GL_TIMESTAMP queries. A frame is bracketed by beginFrame()/endFrame();
+// passes open named scopes (nesting allowed, shown as "outer/inner"). endFrame() waits for the
+// results, which is what a measuring tool wants; the viewer reads them one frame late instead.
+#include "gpu/Objects.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bounce::gl {
+
+struct PassTime {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+class GpuTimers {
+public:
+    class Scope {
+    public:
+        Scope(GpuTimers* timers, size_t index) : m_timers(timers), m_index(index) {}
+        Scope(Scope&& o) noexcept : m_timers(std::exchange(o.m_timers, nullptr)), m_index(o.m_index) {}
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+        Scope& operator=(Scope&&) = delete;
+        ~Scope() {
+            if (m_timers) m_timers->end(m_index);
+        }
+
+    private:
+        GpuTimers* m_timers;
+        size_t m_index;
+    };
+
+    void beginFrame();
+    [[nodiscard]] Scope scope(std::string_view name);
+    // Frame total (first key "frame") followed by every scope in the order opened.
+    std::vector<PassTime> endFrame();
+    bool enabled() const { return m_enabled; }
+    void setEnabled(bool enabled) { m_enabled = enabled; }
+
+private:
+    void end(size_t index);
+    GLuint query();
+
+    struct Entry {
+        std::string name;
+        GLuint begin = 0, end = 0;
+    };
+    std::vector<Query> m_pool;
+    size_t m_used = 0;
+    std::vector<Entry> m_entries;
+    std::vector<std::string> m_stack;
+    GLuint m_frameBegin = 0;
+    bool m_inFrame = false;
+    bool m_enabled = true;
+};
+
+}  // namespace bounce::gl

@@ -1,0 +1,115 @@
+#pragma once
+// Move-only RAII GL objects over DSA (glCreate*), each with a debug label (glObjectLabel) so that
+// debug output and frame debuggers name them ("gbuffer.normal", "rsm.flux").
+#include "gpu/Handle.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstddef>
+#include <string_view>
+
+namespace bounce::gl {
+
+void label(GLenum identifier, GLuint id, std::string_view name);
+
+class Buffer {
+public:
+    Buffer() = default;
+    // Immutable storage (glNamedBufferStorage). Flags default to updatable with glNamedBufferSubData.
+    static Buffer create(std::string_view name, size_t bytes, const void* data = nullptr,
+                         GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+    void upload(size_t offset, size_t bytes, const void* data);
+    void clearZero();
+    void bindBase(GLenum target, GLuint index) const;
+    void bindRange(GLenum target, GLuint index, size_t offset, size_t bytes) const;
+    // Reads back `bytes` from `offset` (synchronous; tests and CPU-side techniques).
+    void download(size_t offset, size_t bytes, void* out) const;
+    GLuint id() const { return m_handle.id(); }
+    size_t size() const { return m_size; }
+    explicit operator bool() const { return static_cast<bool>(m_handle); }
+
+private:
+    Handle<BufferTraits> m_handle;
+    size_t m_size = 0;
+};
+
+struct TextureDesc {
+    GLenum target = GL_TEXTURE_2D;
+    GLenum format = GL_RGBA16F;  // sized internal format
+    int width = 1, height = 1, depth = 1;  // depth = layers for arrays (x6 for cube arrays), slices for 3D
+    int levels = 1;
+    GLenum minFilter = GL_LINEAR, magFilter = GL_LINEAR;
+    GLenum wrap = GL_CLAMP_TO_EDGE;
+};
+
+class Texture {
+public:
+    Texture() = default;
+    static Texture create(std::string_view name, const TextureDesc& desc);
+    static Texture create2D(std::string_view name, int width, int height, GLenum format, int levels = 1);
+    void bind(GLuint unit) const { glBindTextureUnit(unit, m_handle.id()); }
+    void bindImage(GLuint unit, GLenum access, int level = 0, bool layered = false, int layer = 0) const;
+    // Depth-compare sampling (sampler2DShadow / samplerCubeShadow).
+    void setCompareMode(bool enabled);
+    void setFilter(GLenum minFilter, GLenum magFilter);
+    void generateMipmaps() { glGenerateTextureMipmap(m_handle.id()); }
+    GLuint id() const { return m_handle.id(); }
+    const TextureDesc& desc() const { return m_desc; }
+    int width() const { return m_desc.width; }
+    int height() const { return m_desc.height; }
+    explicit operator bool() const { return static_cast<bool>(m_handle); }
+
+private:
+    Handle<TextureTraits> m_handle;
+    TextureDesc m_desc;
+};
+
+class Framebuffer {
+public:
+    Framebuffer() = default;
+    static Framebuffer create(std::string_view name);
+    void attach(GLenum attachment, const Texture& texture, int level = 0);
+    void attachLayer(GLenum attachment, const Texture& texture, int layer, int level = 0);
+    void setDrawBuffers(int colorCount);
+    // Returns false (and logs) when incomplete; callers treat that as a bug (BOUNCE_CHECK).
+    bool complete() const;
+    void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, m_handle.id()); }
+    GLuint id() const { return m_handle.id(); }
+
+private:
+    Handle<FramebufferTraits> m_handle;
+    std::string_view m_name;
+};
+
+class VertexArray {
+public:
+    VertexArray() = default;
+    static VertexArray create(std::string_view name);
+    void bind() const { glBindVertexArray(m_handle.id()); }
+    GLuint id() const { return m_handle.id(); }
+
+private:
+    Handle<VertexArrayTraits> m_handle;
+};
+
+class TransformFeedback {
+public:
+    TransformFeedback() = default;
+    static TransformFeedback create(std::string_view name);
+    GLuint id() const { return m_handle.id(); }
+
+private:
+    Handle<TransformFeedbackTraits> m_handle;
+};
+
+class Query {
+public:
+    Query() = default;
+    static Query create(std::string_view name, GLenum target);
+    GLuint id() const { return m_handle.id(); }
+
+private:
+    Handle<QueryTraits> m_handle;
+};
+
+}  // namespace bounce::gl

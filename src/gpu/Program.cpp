@@ -1,0 +1,182 @@
+#include "gpu/Program.h"
+
+#include "core/Check.h"
+#include "core/FileIo.h"
+#include "gpu/Objects.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <regex>
+#include <span>
+#include <sstream>
+
+namespace bounce::gl {
+
+std::span<const std::pair<std::string_view, std::string_view>> embeddedShaderFiles();
+
+namespace {
+
+// BOUNCE_SHADER_DIR lets a developer edit shaders without rebuilding; otherwise the embedded copy.
+Expected<std::string> shaderFileText(const std::string& file) {
+    if (const char* dir = std::getenv("BOUNCE_SHADER_DIR")) {
+        const std::filesystem::path p = file == "Bindings.h" ? std::filesystem::path(dir) / "../src/gpu/Bindings.h"
+                                                             : std::filesystem::path(dir) / file;
+        return readTextFile(p);
+    }
+    for (const auto& [name, text] : embeddedShaderFiles())
+        if (name == file) return std::string(text);
+    return makeError("shader file '{}' not found under shaders/", file);
+}
+
+// Resolves #include "x" recursively. Each file gets an index in fileTable; "#line N index" keeps
+// the compiler's messages mappable back to file:line.
+Expected<void> expand(const std::string& file, std::vector<std::string>& fileTable, std::string& out, int depth) {
+    if (depth > 16) return makeError("{}: #include nested too deeply (cycle?)", file);
+    BOUNCE_TRY(std::string text, shaderFileText(file));
+    const int index = static_cast<int>(fileTable.size());
+    fileTable.push_back(file);
+    out += fmt::format("#line 1 {}\n", index);
+    std::istringstream in(text);
+    std::string line;
+    int lineNo = 0;
+    static const std::regex includeRe(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*$)");
+    while (std::getline(in, line)) {
+        ++lineNo;
+        std::smatch m;
+        if (std::regex_match(line, m, includeRe)) {
+            auto r = expand(m[1].str(), fileTable, out, depth + 1);
+            if (!r.ok()) return makeError("{}:{}: {}", file, lineNo, r.error().message);
+            out += fmt::format("#line {} {}\n", lineNo + 1, index);
+        } else {
+            out += line;
+            out += '\n';
+        }
+    }
+    return {};
+}
+
+// Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) prefixes into "file:12: error".
+std::string mapLog(const std::string& log, const std::vector<std::string>& fileTable) {
+    static const std::regex re(R"((^|\n)(\d+)(?::(\d+)\((\d+)\)|\((\d+)\))\s*:?)");
+    std::string result;
+    auto begin = log.cbegin();
+    std::smatch m;
+    while (std::regex_search(begin, log.cend(), m, re)) {
+        result.append(begin, m[0].first);
+        const size_t idx = std::stoul(m[2].str());
+        const std::string lineNo = m[3].matched ? m[3].str() : m[5].str();
+        const std::string name = idx < fileTable.size() ? fileTable[idx] : "?";
+        result += m[1].str() + fmt::format("{}:{}:", name, lineNo);
+        begin = m[0].second;
+    }
+    result.append(begin, log.cend());
+    while (!result.empty() && (result.back() == '\n' || result.back() == '\0')) result.pop_back();
+    return result;
+}
+
+const char* stageName(GLenum stage) {
+    switch (stage) {
+        case GL_VERTEX_SHADER: return "vertex";
+        case GL_GEOMETRY_SHADER: return "geometry";
+        case GL_FRAGMENT_SHADER: return "fragment";
+        case GL_COMPUTE_SHADER: return "compute";
+        case GL_TESS_CONTROL_SHADER: return "tess-control";
+        case GL_TESS_EVALUATION_SHADER: return "tess-evaluation";
+        default: return "unknown";
+    }
+}
+
+}  // namespace
+
+Expected<std::string> preprocessShader(const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
+                                       std::vector<std::string>* fileTableOut) {
+    std::vector<std::string> fileTable;
+    std::string body;
+    // Bindings.h first: it is index 0, so binding indices are shared with C++.
+    std::string src = "#version 450 core\n";
+    for (const auto& [name, value] : defines) src += fmt::format("#define {} {}\n", name, value);
+    BOUNCE_TRY_VOID(expand("Bindings.h", fileTable, src, 0));
+    BOUNCE_TRY_VOID(expand(file, fileTable, src, 0));
+    if (fileTableOut) *fileTableOut = fileTable;
+    return src;
+}
+
+Expected<Program> Program::build(const ProgramDesc& desc) {
+    BOUNCE_CHECK(!desc.stages.empty(), "program '{}' has no stages", desc.label);
+    GLuint program = glCreateProgram();
+    Program p;
+    p.m_handle = Handle<ProgramTraits>(program);
+    p.m_label = desc.label;
+    std::vector<Handle<ShaderTraits>> shaders;
+    for (const auto& [stage, file] : desc.stages) {
+        std::vector<std::string> fileTable;
+        auto source = preprocessShader(file, desc.defines, &fileTable);
+        if (!source.ok()) return makeError("program '{}': {}", desc.label, source.error().message);
+        GLuint shader = glCreateShader(stage);
+        shaders.emplace_back(shader);
+        const char* text = source->c_str();
+        glShaderSource(shader, 1, &text, nullptr);
+        glCompileShader(shader);
+        GLint ok = GL_FALSE;
+        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            GLint length = 0;
+            glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+            std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
+            glGetShaderInfoLog(shader, length, nullptr, log.data());
+            return makeError("program '{}': {} shader {} failed to compile:\n{}", desc.label, stageName(stage), file,
+                             mapLog(log, fileTable));
+        }
+        glAttachShader(program, shader);
+    }
+    if (!desc.feedbackVaryings.empty()) {
+        std::vector<const char*> names;
+        for (const auto& v : desc.feedbackVaryings) names.push_back(v.c_str());
+        glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
+    }
+    glLinkProgram(program);
+    for (auto& s : shaders) glDetachShader(program, s.id());
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        GLint length = 0;
+        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program, length, nullptr, log.data());
+        while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+        return makeError("program '{}' failed to link: {}", desc.label, log);
+    }
+    gl::label(GL_PROGRAM, program, desc.label);
+    return p;
+}
+
+GLint Program::location(std::string_view name) {
+    auto it = m_locations.find(std::string(name));
+    if (it != m_locations.end()) return it->second;
+    const std::string key(name);
+    const GLint loc = glGetUniformLocation(id(), key.c_str());
+    if (loc < 0) spdlog::debug("program '{}': uniform '{}' not active", m_label, key);
+    m_locations.emplace(key, loc);
+    return loc;
+}
+
+void Program::set(std::string_view n, int v) { glProgramUniform1i(id(), location(n), v); }
+void Program::set(std::string_view n, unsigned v) { glProgramUniform1ui(id(), location(n), v); }
+void Program::set(std::string_view n, float v) { glProgramUniform1f(id(), location(n), v); }
+void Program::set(std::string_view n, const glm::vec2& v) { glProgramUniform2fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, const glm::vec3& v) { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, const glm::vec4& v) { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, const glm::ivec2& v) { glProgramUniform2iv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, const glm::mat4& v) {
+    glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+void Program::dispatch(int sx, int sy, int sz, int lx, int ly, int lz) {
+    auto groups = [](int size, int local) { return static_cast<GLuint>((size + local - 1) / local); };
+    glDispatchCompute(groups(sx, lx), groups(sy, ly), groups(sz, lz));
+}
+
+}  // namespace bounce::gl

@@ -1,0 +1,21 @@
+#pragma once
+// Direct lighting of the G-buffer: emitted radiance first, then one additive full-screen pass per
+// light with its shadow map (Lambert + GGX, common/brdf.glsl). The result is linear radiance.
+#include "gpu/Program.h"
+#include "render/GBuffer.h"
+#include "render/LightSet.h"
+
+namespace bounce::render {
+
+class DirectLighting {
+public:
+    static Expected<DirectLighting> create();
+    // Writes into `target` (RGBA32F, G-buffer size). FrameUniforms must be bound.
+    void render(const GBuffer& gbuffer, const LightSet& lights, const gl::Texture& target);
+
+private:
+    gl::Program m_emission, m_light;
+    gl::Framebuffer m_fbo;
+};
+
+}  // namespace bounce::render

@@ -1,0 +1,195 @@
+#include "render/LightSet.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace bounce::render {
+
+namespace {
+
+// Wider spots would need a degenerate perspective frustum; they use a cube map instead.
+constexpr float kMaxPerspectiveSpotAngle = glm::radians(80.0f);
+// Near plane of light frusta as a fraction of the scene diagonal: small enough not to clip
+// geometry next to the light, large enough to keep 32-bit float depth precise.
+constexpr float kNearFraction = 1e-3f;
+
+// LightGpu::edgeU.w: which shadow map a light has (matches common/lighting.glsl).
+constexpr float k2D = 1.0f, kCube = 2.0f;
+
+bool sameLight(const Light& a, const Light& b) {
+    return a.position == b.position && a.direction == b.direction && a.edgeU == b.edgeU && a.edgeV == b.edgeV &&
+           a.cutoffAngle == b.cutoffAngle;
+}
+
+glm::vec3 anyPerpendicular(glm::vec3 d) {
+    return std::abs(d.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+}
+
+}  // namespace
+
+gpu::LightGpu toGpu(const Light& l) {
+    gpu::LightGpu g{};
+    int type = LIGHT_POINT;
+    glm::vec3 emission = l.intensity;
+    switch (l.type) {
+        case LightType::Point: type = LIGHT_POINT; break;
+        case LightType::Spot: type = LIGHT_SPOT; break;
+        case LightType::Directional: type = LIGHT_DIRECTIONAL; emission = l.irradiance; break;
+        case LightType::Area: type = LIGHT_AREA; emission = l.radiance; break;
+    }
+    g.position = glm::vec4(l.position, static_cast<float>(type));
+    g.direction = glm::vec4(glm::normalize(l.direction), std::cos(l.cutoffAngle));
+    g.emission = glm::vec4(emission, l.falloffExponent);
+    g.edgeU = glm::vec4(l.edgeU, 0.0f);
+    g.edgeV = glm::vec4(l.edgeV, 0.0f);
+    g.shadowClipFromWorld = glm::mat4(1.0f);
+    return g;
+}
+
+Expected<LightSet> LightSet::create() {
+    LightSet s;
+    BOUNCE_TRY(s.m_depthProgram, gl::Program::build({"shadow.depth",
+                                                     {{GL_VERTEX_SHADER, "render/scene.vert"},
+                                                      {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
+    BOUNCE_TRY(s.m_distanceProgram, gl::Program::build({"shadow.distance",
+                                                        {{GL_VERTEX_SHADER, "render/scene.vert"},
+                                                         {GL_FRAGMENT_SHADER, "render/shadow_distance.frag"}}}));
+    s.m_dummy2D = gl::Texture::create2D("shadow.dummy2D", 1, 1, GL_DEPTH_COMPONENT32F);
+    s.m_dummy2D.setCompareMode(true);
+    gl::TextureDesc cube;
+    cube.target = GL_TEXTURE_CUBE_MAP;
+    cube.format = GL_R32F;
+    s.m_dummyCube = gl::Texture::create("shadow.dummyCube", cube);
+    const float one = 1.0f;
+    glClearTexImage(s.m_dummy2D.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+    glClearTexImage(s.m_dummyCube.id(), 0, GL_RED, GL_FLOAT, &one);
+    return s;
+}
+
+void LightSet::bind(size_t i) const {
+    const Entry& e = m_entries[i];
+    e.ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_LIGHT);
+    (e.gpu.edgeU.w == kCube ? e.distance : m_dummyCube).bind(BINDING_TEX_SHADOW_CUBE);
+    (e.gpu.edgeU.w == k2D ? e.depth : m_dummy2D).bind(BINDING_TEX_SHADOW);
+}
+
+void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
+    const SceneGpu& scene = drawer.scene();
+    const std::vector<Light>& lights = scene.lights();
+    if (m_entries.size() != lights.size()) m_entries.resize(lights.size());
+    glm::vec3 lo, hi;
+    scene.scene().bounds(scene.time(), lo, hi);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+    const float diagonal = 2.0f * radius;
+    const int size = settings.shadowMapSize;
+
+    GLint previousFbo = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previousFbo);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Light& light = lights[i];
+        Entry& e = m_entries[i];
+        gpu::LightGpu g = toGpu(light);
+        const bool wideSpot = light.type == LightType::Spot && light.cutoffAngle > kMaxPerspectiveSpotAngle;
+        const bool cube = light.type == LightType::Point || light.type == LightType::Area || wideSpot;
+        // Cube maps of area lights sit a hair in front of the emitter so it does not shadow itself.
+        glm::vec3 origin = light.position;
+        if (light.type == LightType::Area) origin += light.areaNormal() * (kNearFraction * diagonal);
+        const float farPlane = glm::length(origin - centre) + radius;
+        const float nearPlane = kNearFraction * diagonal;
+        g.edgeU.w = cube ? kCube : k2D;
+        g.edgeV.w = settings.shadowBias;
+        g.shadowParams = glm::vec4(farPlane, static_cast<float>(size), static_cast<float>(settings.pcfRadius), 0.0f);
+        if (!cube) {
+            glm::mat4 viewFromWorld, clipFromView;
+            if (light.type == LightType::Directional) {
+                const glm::vec3 d = glm::normalize(light.direction);
+                const glm::vec3 eye = centre - d * (radius * 2.0f);
+                viewFromWorld = glm::lookAt(eye, centre, anyPerpendicular(d));
+                clipFromView = glm::ortho(-radius, radius, -radius, radius, radius, radius * 3.0f);
+            } else {
+                const glm::vec3 d = glm::normalize(light.direction);
+                viewFromWorld = glm::lookAt(light.position, light.position + d, anyPerpendicular(d));
+                clipFromView = glm::perspective(2.0f * light.cutoffAngle, 1.0f, nearPlane, farPlane);
+            }
+            g.shadowClipFromWorld = clipFromView * viewFromWorld;
+        }
+
+        const bool dynamicOccluders = scene.hasDynamicObjects();
+        const bool needsRender = !e.valid || e.size != size || !sameLight(e.rendered, light) || dynamicOccluders ||
+                                 (e.gpu.edgeU.w != g.edgeU.w);
+        if (!e.ubo) e.ubo = gl::Buffer::create("light.uniforms", sizeof(gpu::LightGpu));
+        if (needsRender) {
+            if (e.size != size || e.gpu.edgeU.w != g.edgeU.w || !e.valid) {
+                e.fbo = gl::Framebuffer::create("shadow.fbo");
+                if (cube) {
+                    gl::TextureDesc d;
+                    d.target = GL_TEXTURE_CUBE_MAP;
+                    d.width = d.height = size;
+                    d.format = GL_R32F;
+                    e.distance = gl::Texture::create("shadow.cubeDistance", d);
+                    d.format = GL_DEPTH_COMPONENT32F;
+                    d.minFilter = d.magFilter = GL_NEAREST;
+                    e.depth = gl::Texture::create("shadow.cubeDepth", d);
+                } else {
+                    e.depth = gl::Texture::create2D("shadow.depth", size, size, GL_DEPTH_COMPONENT32F);
+                    e.depth.setCompareMode(true);
+                    e.distance = gl::Texture();
+                }
+            }
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LESS);
+            glDisable(GL_BLEND);
+            glDisable(GL_CULL_FACE);
+            // Slope-scaled offset against acne on surfaces at grazing angles to the light.
+            glEnable(GL_POLYGON_OFFSET_FILL);
+            glPolygonOffset(1.5f, 2.0f);
+            if (cube) {
+                m_distanceProgram.use();
+                for (int face = 0; face < 6; ++face) {
+                    e.fbo.attachLayer(GL_COLOR_ATTACHMENT0, e.distance, face);
+                    e.fbo.attachLayer(GL_DEPTH_ATTACHMENT, e.depth, face);
+                    e.fbo.setDrawBuffers(1);
+                    BOUNCE_CHECK(e.fbo.complete(), "cube shadow framebuffer");
+                    e.fbo.bind();
+                    const float clear = 1.0f;
+                    glClearNamedFramebufferfv(e.fbo.id(), GL_COLOR, 0, &clear);
+                    glClearNamedFramebufferfv(e.fbo.id(), GL_DEPTH, 0, &clear);
+                    drawer.draw(cubeFaceView(origin, face, nearPlane, farPlane, size));
+                }
+            } else {
+                m_depthProgram.use();
+                e.fbo.attach(GL_DEPTH_ATTACHMENT, e.depth);
+                e.fbo.setDrawBuffers(0);
+                BOUNCE_CHECK(e.fbo.complete(), "2D shadow framebuffer");
+                e.fbo.bind();
+                const float clear = 1.0f;
+                glClearNamedFramebufferfv(e.fbo.id(), GL_DEPTH, 0, &clear);
+                View v;
+                v.viewFromWorld = glm::mat4(1.0f);
+                v.clipFromView = g.shadowClipFromWorld;
+                v.eye = light.position;
+                v.nearPlane = nearPlane;
+                v.farPlane = farPlane;
+                v.viewport = {size, size};
+                drawer.draw(v);
+            }
+            glDisable(GL_POLYGON_OFFSET_FILL);
+            e.rendered = light;
+            e.size = size;
+            e.valid = true;
+            ++m_mapsRendered;
+        }
+        g.shadowOrigin = glm::vec4(origin, 1.0f);
+        e.gpu = g;
+        e.ubo.upload(0, sizeof(g), &g);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previousFbo));
+}
+
+}  // namespace bounce::render

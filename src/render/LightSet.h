@@ -1,0 +1,52 @@
+#pragma once
+// The lights at the current time: each one's GPU description (LightGpu, in a uniform buffer) and
+// its shadow map. Spot lights up to
+// kMaxPerspectiveSpotAngle get a perspective 2D depth map; directional lights an orthographic one
+// fitted to the scene bounds; point lights, area lights (from their centre) and wider spots a cube
+// map of light-to-surface distance. Maps are re-rendered only when their light or a dynamic object
+// moved (static scenes render them once).
+#include "common/shared.h"
+#include "gpu/Program.h"
+#include "render/RenderSettings.h"
+#include "render/SceneDrawer.h"
+
+#include <vector>
+
+namespace bounce::render {
+
+class LightSet {
+public:
+    static Expected<LightSet> create();
+
+    // Updates LightGpu data for the lights at the scene's current time and re-renders stale maps.
+    void update(SceneDrawer& drawer, const RenderSettings& settings);
+
+    size_t count() const { return m_entries.size(); }
+    const gpu::LightGpu& light(size_t i) const { return m_entries[i].gpu; }
+    // Binds light i's UBO (BINDING_UBO_LIGHT) and map (BINDING_TEX_SHADOW or _CUBE).
+    void bind(size_t i) const;
+    size_t mapsRendered() const { return m_mapsRendered; }
+
+private:
+    struct Entry {
+        gpu::LightGpu gpu{};
+        gl::Texture depth;      // 2D depth, or cube depth for the z-test of cube maps
+        gl::Texture distance;   // cube R32F distance / far
+        gl::Framebuffer fbo;
+        gl::Buffer ubo;
+        int size = 0;
+        Light rendered;         // the light state the map was rendered for
+        bool valid = false;
+    };
+    gl::Program m_depthProgram, m_distanceProgram;
+    // Bound to the shadow unit a light does not use, so both samplers always see a complete texture
+    // of their type.
+    gl::Texture m_dummy2D, m_dummyCube;
+    std::vector<Entry> m_entries;
+    size_t m_mapsRendered = 0;
+};
+
+// The GPU form of a light (no shadow information).
+gpu::LightGpu toGpu(const Light& light);
+
+}  // namespace bounce::render

@@ -1,0 +1,146 @@
+#include "techniques/Pipeline.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+#include "gpu/Context.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <chrono>
+
+namespace bounce {
+
+Expected<Component> parseComponent(std::string_view name) {
+    if (name == "full") return Component::Full;
+    if (name == "direct") return Component::Direct;
+    if (name == "indirect") return Component::Indirect;
+    return makeError("unknown component '{}' (known: full, direct, indirect)", name);
+}
+
+std::string_view componentName(Component c) {
+    switch (c) {
+        case Component::Full: return "full";
+        case Component::Direct: return "direct";
+        case Component::Indirect: return "indirect";
+    }
+    return "?";
+}
+
+Pipeline::Pipeline(const Scene& scene, glm::ivec2 size, const render::RenderSettings& settings)
+    : m_scene(scene), m_size(size), m_settings(settings), m_sceneGpu(scene), m_drawer(m_sceneGpu) {}
+
+Expected<std::unique_ptr<Pipeline>> Pipeline::create(const Scene& scene, std::unique_ptr<Technique> technique,
+                                                     glm::ivec2 size, const render::RenderSettings& settings) {
+    BOUNCE_CHECK(technique != nullptr, "pipeline without technique");
+    if (size.x <= 0 || size.y <= 0) return makeError("image size {}x{} is not positive", size.x, size.y);
+    const gl::Context* context = gl::Context::current();
+    BOUNCE_CHECK(context != nullptr, "no current GL context");
+    const int maxSize = context->info().maxTextureSize;
+    if (size.x > maxSize || size.y > maxSize)
+        return makeError("image size {}x{} exceeds the GPU's maximum texture size {}", size.x, size.y, maxSize);
+    std::unique_ptr<Pipeline> p(new Pipeline(scene, size, settings));
+    BOUNCE_TRY(p->m_lights, render::LightSet::create());
+    BOUNCE_TRY(p->m_gbuffer, render::GBuffer::create(size));
+    BOUNCE_TRY(p->m_directLighting, render::DirectLighting::create());
+    BOUNCE_TRY(p->m_compose, gl::Program::build({"compose", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/compose.frag"}}}));
+    p->m_direct = gl::Texture::create2D("output.direct", size.x, size.y, GL_RGBA32F);
+    p->m_indirect = gl::Texture::create2D("output.indirect", size.x, size.y, GL_RGBA32F);
+    p->m_full = gl::Texture::create2D("output.full", size.x, size.y, GL_RGBA32F);
+    p->m_composeFbo = gl::Framebuffer::create("compose.fbo");
+    p->m_composeFbo.attach(GL_COLOR_ATTACHMENT0, p->m_full);
+    p->m_composeFbo.setDrawBuffers(1);
+    BOUNCE_CHECK(p->m_composeFbo.complete(), "compose framebuffer");
+    p->m_frameUbo = gl::Buffer::create("frame.uniforms", sizeof(gpu::FrameUniforms));
+    p->m_technique = std::move(technique);
+    SetupContext setup{scene, p->m_sceneGpu, size, p->m_settings};
+    auto ok = p->m_technique->setup(setup);
+    if (!ok.ok()) return makeError("technique '{}': {}", p->m_technique->name(), ok.error().message);
+    return p;
+}
+
+FrameStats Pipeline::renderFrame(uint32_t frame, const Camera* cameraOverride) {
+    const auto start = std::chrono::steady_clock::now();
+    FrameStats stats;
+    stats.frame = frame;
+    stats.time = m_scene.timeOfFrame(frame);
+    m_timers.beginFrame();
+    m_sceneGpu.update(stats.time);
+    const Camera camera = cameraOverride ? *cameraOverride : m_sceneGpu.camera();
+    const render::View view = render::cameraView(camera, m_size);
+
+    gpu::FrameUniforms fu{};
+    fu.clipFromWorld = view.clipFromWorld();
+    fu.worldFromClip = glm::inverse(fu.clipFromWorld);
+    fu.viewFromWorld = view.viewFromWorld;
+    fu.eyePosition = glm::vec4(camera.position, stats.time);
+    fu.viewport = glm::vec4(m_size.x, m_size.y, 1.0f / m_size.x, 1.0f / m_size.y);
+    fu.ambient = glm::vec4(0.0f, 0.0f, 0.0f, static_cast<float>(frame));
+    m_frameUbo.upload(0, sizeof(fu), &fu);
+    m_frameUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_FRAME);
+
+    {
+        auto s = m_timers.scope("shadow-maps");
+        m_lights.update(m_drawer, m_settings);
+    }
+    {
+        auto s = m_timers.scope("gbuffer");
+        m_gbuffer.render(m_drawer, view, m_lights);
+    }
+    {
+        auto s = m_timers.scope("direct");
+        m_frameUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_FRAME);
+        m_directLighting.render(m_gbuffer, m_lights, m_direct);
+    }
+    {
+        auto s = m_timers.scope(m_technique->name());
+        m_frameUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_FRAME);
+        FrameContext ctx{m_scene,  m_sceneGpu, m_drawer,        m_lights, m_gbuffer, view,   m_direct,
+                         m_timers, stats.counters, stats.time, frame,    m_size};
+        m_technique->renderIndirect(ctx, m_indirect);
+    }
+    {
+        auto s = m_timers.scope("compose");
+        m_composeFbo.bind();
+        glViewport(0, 0, m_size.x, m_size.y);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        m_direct.bind(BINDING_TEX_INPUT0);
+        m_indirect.bind(BINDING_TEX_INPUT1);
+        m_compose.use();
+        gl::Context::current()->bindEmptyVertexArray();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    stats.passes = m_timers.endFrame();
+    glFinish();
+    stats.cpuMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats.counters["shadowMapsRendered"] = static_cast<double>(m_lights.mapsRendered());
+    stats.counters["triangles"] = static_cast<double>(m_sceneGpu.triangleCount(render::DrawFilter::All));
+    return stats;
+}
+
+const gl::Texture& Pipeline::output(Component c) const {
+    switch (c) {
+        case Component::Full: return m_full;
+        case Component::Direct: return m_direct;
+        case Component::Indirect: return m_indirect;
+    }
+    return m_full;
+}
+
+Image Pipeline::readback(Component c) const { return readTexture(output(c)); }
+
+Image readTexture(const gl::Texture& texture) {
+    const int w = texture.width(), h = texture.height();
+    std::vector<glm::vec4> rgba(static_cast<size_t>(w) * h);
+    glGetTextureImage(texture.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(glm::vec4)),
+                      rgba.data());
+    Image image(w, h);
+    // GL rows start at the bottom; Image rows at the top.
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) image.at(x, h - 1 - y) = glm::vec3(rgba[static_cast<size_t>(y) * w + x]);
+    return image;
+}
+
+}  // namespace bounce

@@ -1,0 +1,64 @@
+#pragma once
+// One technique rendering one scene: the frame loop shared by `bounce render`, `bounce view`, the
+// tests and the benchmarks. Per frame: scene update (time = frame / frameRate), light set and
+// shadow maps, camera G-buffer, direct light, the technique's indirect light, full = direct +
+// indirect. Every pass is timed (GpuTimers) under the names used in run records.
+#include "core/Image.h"
+#include "techniques/Technique.h"
+
+#include <memory>
+
+namespace bounce {
+
+enum class Component { Full, Direct, Indirect };
+Expected<Component> parseComponent(std::string_view name);
+std::string_view componentName(Component c);
+
+struct FrameStats {
+    uint32_t frame = 0;
+    float time = 0.0f;               // seconds
+    double cpuMilliseconds = 0.0;    // wall time of renderFrame including the GPU wait
+    std::vector<gl::PassTime> passes;  // "frame" first
+    Counters counters;
+};
+
+class Pipeline {
+public:
+    // The technique's settings must already be applied. Builds programs and uploads the scene.
+    static Expected<std::unique_ptr<Pipeline>> create(const Scene& scene, std::unique_ptr<Technique> technique,
+                                                      glm::ivec2 size, const render::RenderSettings& settings);
+
+    // Renders frame `frame`; the camera is the scene's (animated) camera unless overridden.
+    FrameStats renderFrame(uint32_t frame, const Camera* cameraOverride = nullptr);
+
+    const gl::Texture& output(Component c) const;
+    Image readback(Component c) const;
+
+    Technique& technique() { return *m_technique; }
+    const render::RenderSettings& renderSettings() const { return m_settings; }
+    render::SceneGpu& sceneGpu() { return m_sceneGpu; }
+    glm::ivec2 size() const { return m_size; }
+
+private:
+    Pipeline(const Scene& scene, glm::ivec2 size, const render::RenderSettings& settings);
+
+    const Scene& m_scene;
+    glm::ivec2 m_size;
+    render::RenderSettings m_settings;
+    render::SceneGpu m_sceneGpu;
+    render::SceneDrawer m_drawer;
+    render::LightSet m_lights;
+    render::GBuffer m_gbuffer;
+    render::DirectLighting m_directLighting;
+    std::unique_ptr<Technique> m_technique;
+    gl::Program m_compose;
+    gl::Texture m_direct, m_indirect, m_full;
+    gl::Framebuffer m_composeFbo;
+    gl::Buffer m_frameUbo;
+    gl::GpuTimers m_timers;
+};
+
+// Linear RGB of an RGBA32F texture, top row first.
+Image readTexture(const gl::Texture& texture);
+
+}  // namespace bounce

@@ -1,0 +1,61 @@
+#pragma once
+// A GI technique: one folder under techniques/, its shaders under shaders/techniques/<name>/, a doc
+// page docs/techniques/<name>.md and one line in Registry.cpp.
+//
+// Every frame the Pipeline renders the shared passes first (scene update, light set with shadow
+// maps, camera G-buffer, direct lighting), then asks the technique for the indirect radiance, and
+// composes full = direct + indirect. A technique that computes its own direct light (a radiosity
+// solution, say) overrides ownsDirect() and overwrites the direct target too.
+#include "core/Error.h"
+#include "core/Settings.h"
+#include "gpu/GpuTimers.h"
+#include "render/DirectLighting.h"
+#include "render/GBuffer.h"
+#include "render/LightSet.h"
+#include "render/RenderSettings.h"
+#include "render/SceneDrawer.h"
+
+#include <map>
+#include <string>
+#include <string_view>
+
+namespace bounce {
+
+// Numbers a technique reports per frame (VPL counts, fragments per level, ...), by name.
+using Counters = std::map<std::string, double>;
+
+struct SetupContext {
+    const Scene& scene;
+    render::SceneGpu& sceneGpu;
+    glm::ivec2 size;  // output size in pixels
+    const render::RenderSettings& renderSettings;
+};
+
+struct FrameContext {
+    const Scene& scene;
+    render::SceneGpu& sceneGpu;  // already updated to `time`
+    render::SceneDrawer& drawer;
+    const render::LightSet& lights;
+    const render::GBuffer& gbuffer;
+    const render::View& camera;
+    const gl::Texture& direct;  // direct radiance of this frame
+    gl::GpuTimers& timers;
+    Counters& counters;
+    float time = 0.0f;   // seconds
+    uint32_t frame = 0;  // frame index since the start of the run
+    glm::ivec2 size{0};
+};
+
+class Technique : public Configurable {
+public:
+    ~Technique() override = default;
+    virtual std::string_view name() const = 0;
+    // After settings were applied and the scene uploaded: build programs and allocate targets.
+    virtual Expected<void> setup(const SetupContext& ctx) = 0;
+    // Writes this frame's indirect radiance, W/(m^2 sr), into `indirect` (RGBA32F, frame size).
+    virtual void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) = 0;
+    // True when renderIndirect also rewrites `ctx.direct` (it is then passed as writable).
+    virtual bool ownsDirect() const { return false; }
+};
+
+}  // namespace bounce
