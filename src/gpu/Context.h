@@ -66,6 +66,8 @@ protected:
     Context() = default;
     // Called by implementations once the context is current.
     void initialise(const ContextConfig& config, std::string platform);
+    // Deletes the context's own GL objects; implementations call it while still current.
+    void releaseObjects() { m_emptyVao = VertexArray(); }
 
 private:
     GpuInfo m_info;

@@ -27,6 +27,7 @@ class EglContext final : public Context {
 public:
     EglContext(EGLDisplay display, EGLContext context) : m_display(display), m_context(context) {}
     ~EglContext() override {
+        releaseObjects();
         eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(m_display, m_context);
         eglTerminate(m_display);

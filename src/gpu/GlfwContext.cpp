@@ -12,6 +12,7 @@ class GlfwContext final : public Context {
 public:
     explicit GlfwContext(GLFWwindow* window) : m_window(window) {}
     ~GlfwContext() override {
+        releaseObjects();
         glfwDestroyWindow(m_window);
         glfwTerminate();
     }

@@ -150,6 +150,9 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
 }
 
 void SceneGpu::update(float time) {
+    // Lights are re-evaluated every call: the viewer edits them in place between frames.
+    m_lights.clear();
+    for (const Light& l : m_scene->lights) m_lights.push_back(l.at(time));
     const bool first = m_time < 0.0f;
     if (!first && time == m_time) return;
     m_time = time;
@@ -162,8 +165,6 @@ void SceneGpu::update(float time) {
         }
     }
     if (changed) m_objects.upload(0, m_objectData.size() * sizeof(gpu::ObjectGpu), m_objectData.data());
-    m_lights.clear();
-    for (const Light& l : m_scene->lights) m_lights.push_back(l.at(time));
 }
 
 void SceneGpu::bindGeometry() const {

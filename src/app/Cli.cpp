@@ -1,0 +1,49 @@
+#include "app/Cli.h"
+
+#include "core/Log.h"
+
+#include <iostream>
+
+namespace bounce {
+
+int failCommand(const std::string& command, const std::string& message) {
+    // One line: multi-line messages (shader logs) are rare and keep their first line first.
+    std::cerr << "bounce " << command << ": " << message << "\n";
+    return 1;
+}
+
+int runCli(int argc, char** argv) {
+    CLI::App app{"bounce: real-time global illumination techniques side by side, measured against ground truth"};
+    app.require_subcommand(1);
+    std::string logLevel = "warn";
+    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error, off")->capture_default_str();
+    CommandAction action;
+    registerListCommand(app, action);
+    registerInfoCommand(app, action);
+    registerRenderCommand(app, action);
+    registerViewCommand(app, action);
+    registerReferenceCommand(app, action);
+    registerCompareCommand(app, action);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::string sub;
+        for (const CLI::App* s : app.get_subcommands()) sub = s->get_name();
+        std::cerr << "bounce" << (sub.empty() ? "" : " " + sub) << ": " << e.what() << " (see --help)\n";
+        return e.get_exit_code() == 0 ? 2 : e.get_exit_code();
+    }
+    setLogLevel(logLevel);
+    if (!action) return failCommand("", "no command");
+    try {
+        return action();
+    } catch (const std::exception& e) {
+        // Library exceptions (assimp, OpenEXR, json) are input problems reported as one line.
+        return failCommand(app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name(), e.what());
+    }
+}
+
+}  // namespace bounce

@@ -1,0 +1,73 @@
+#include "app/Options.h"
+
+#include <charconv>
+
+namespace bounce {
+
+Expected<glm::ivec2> parseSize(const std::string& text) {
+    const size_t x = text.find_first_of("xX");
+    auto number = [](std::string_view s, int& out) {
+        auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+        return ec == std::errc() && end == s.data() + s.size() && !s.empty();
+    };
+    glm::ivec2 size;
+    if (x == std::string::npos || !number(std::string_view(text).substr(0, x), size.x) ||
+        !number(std::string_view(text).substr(x + 1), size.y))
+        return makeError("--size '{}' is not of the form WIDTHxHEIGHT (e.g. 512x512)", text);
+    constexpr int kMaxSide = 16384;  // beyond any GL implementation's texture limit
+    if (size.x < 1 || size.y < 1 || size.x > kMaxSide || size.y > kMaxSide)
+        return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxSide);
+    return size;
+}
+
+Expected<std::map<std::string, std::string>> parseAssignments(const std::vector<std::string>& items,
+                                                              const std::string& flag) {
+    std::map<std::string, std::string> out;
+    for (const std::string& item : items) {
+        auto kv = parseAssignment(item);
+        if (!kv.ok()) return makeError("{}: {}", flag, kv.error().message);
+        out[kv->first] = kv->second;
+    }
+    return out;
+}
+
+Expected<Scene> loadSceneWithParams(const std::string& scene, const std::vector<std::string>& params) {
+    BOUNCE_TRY(auto values, parseAssignments(params, "--scene-param"));
+    return loadScene(scene, values);
+}
+
+namespace {
+
+// Sorts one key into the renderer's or the technique's map. Returns false for another technique's key.
+bool route(const std::string& key, const std::string& value, std::string_view technique,
+           std::map<std::string, std::string>& renderer, std::map<std::string, std::string>& own) {
+    const size_t dot = key.find('.');
+    if (dot == std::string::npos) {
+        own[key] = value;
+        return true;
+    }
+    const std::string owner = key.substr(0, dot), name = key.substr(dot + 1);
+    if (owner == "renderer") renderer[name] = value;
+    else if (owner == technique) own[name] = value;
+    else return false;
+    return true;
+}
+
+}  // namespace
+
+Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
+                                const std::vector<std::string>& cliSettings) {
+    std::map<std::string, std::string> renderer, own;
+    for (const auto& [key, value] : scene.settings) route(key, value, technique.name(), renderer, own);
+    BOUNCE_TRY(auto cli, parseAssignments(cliSettings, "--set"));
+    for (const auto& [key, value] : cli)
+        if (!route(key, value, technique.name(), renderer, own))
+            return makeError("--set {}: the prefix names another technique (this run uses '{}'; renderer settings "
+                             "start with 'renderer.')",
+                             key, technique.name());
+    BOUNCE_TRY_VOID(applySettings(renderSettings, renderer, "renderer"));
+    BOUNCE_TRY_VOID(applySettings(technique, own, fmt::format("technique '{}'", technique.name())));
+    return {};
+}
+
+}  // namespace bounce

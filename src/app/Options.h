@@ -1,0 +1,31 @@
+#pragma once
+// Option parsing shared by the commands: image sizes, name=value lists, scene loading with
+// parameters, and the settings of a technique and the shared renderer.
+#include "core/Error.h"
+#include "render/RenderSettings.h"
+#include "scene/SceneLoader.h"
+#include "techniques/Technique.h"
+
+#include <glm/vec2.hpp>
+
+#include <string>
+#include <vector>
+
+namespace bounce {
+
+// "WxH" with 1 <= W, H <= 16384.
+Expected<glm::ivec2> parseSize(const std::string& text);
+// A list of "name=value" into a map; `flag` names the option in messages.
+Expected<std::map<std::string, std::string>> parseAssignments(const std::vector<std::string>& items,
+                                                              const std::string& flag);
+// Loads a scene by name or path with --scene-param values.
+Expected<Scene> loadSceneWithParams(const std::string& scene, const std::vector<std::string>& params);
+
+// Applies the scene file's default settings, then the command line's (--set), to the technique and
+// the shared renderer settings. Keys: "renderer.NAME", "TECHNIQUE.NAME" or a bare "NAME" (the
+// technique's). A key for another technique is ignored in the scene file and an error on the
+// command line.
+Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
+                                const std::vector<std::string>& cliSettings);
+
+}  // namespace bounce

@@ -1,0 +1,93 @@
+// `bounce render`: headless rendering of one technique on one scene, the main path of the lab.
+#include "app/Cli.h"
+#include "app/Options.h"
+#include "app/RunRecord.h"
+#include "core/FileIo.h"
+#include "core/ImageIo.h"
+#include "gpu/Context.h"
+#include "techniques/Pipeline.h"
+#include "techniques/Registry.h"
+
+#include <spdlog/spdlog.h>
+
+namespace bounce {
+
+namespace {
+
+struct RenderOptions {
+    std::string scene;
+    std::vector<std::string> sceneParams;
+    std::string technique = "direct";
+    std::string size = "512x512";
+    int frames = 1;
+    std::vector<std::string> settings;
+    std::string component = "full";
+    std::string out;
+    std::string stats;
+};
+
+int runRender(const RenderOptions& o) {
+    const std::string cmd = "render";
+    auto size = parseSize(o.size);
+    if (!size.ok()) return failCommand(cmd, size.error().message);
+    auto component = parseComponent(o.component);
+    if (!component.ok()) return failCommand(cmd, "--component: " + component.error().message);
+    if (o.frames < 1) return failCommand(cmd, fmt::format("--frames {} must be at least 1", o.frames));
+    if (auto f = imageFormatFor(o.out); !f.ok()) return failCommand(cmd, "--out " + f.error().message);
+    if (auto w = checkWritable(o.out); !w.ok()) return failCommand(cmd, "--out " + w.error().message);
+    if (!o.stats.empty())
+        if (auto w = checkWritable(o.stats); !w.ok()) return failCommand(cmd, "--stats " + w.error().message);
+    auto technique = createTechnique(o.technique);
+    if (!technique.ok()) return failCommand(cmd, "--technique: " + technique.error().message);
+    auto scene = loadSceneWithParams(o.scene, o.sceneParams);
+    if (!scene.ok()) return failCommand(cmd, scene.error().message);
+    render::RenderSettings renderSettings;
+    if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings); !r.ok())
+        return failCommand(cmd, r.error().message);
+
+    auto context = gl::Context::createHeadless();
+    if (!context.ok()) return failCommand(cmd, context.error().message);
+    auto pipeline = Pipeline::create(*scene, std::move(*technique), *size, renderSettings);
+    if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
+
+    std::vector<FrameStats> frames;
+    for (int f = 0; f < o.frames; ++f) frames.push_back((*pipeline)->renderFrame(static_cast<uint32_t>(f)));
+    if (gl::Context::debugErrorCount() > 0)
+        spdlog::warn("{} GL errors were reported during rendering", gl::Context::debugErrorCount());
+    const Image image = (*pipeline)->readback(*component);
+    if (auto r = checkFinite(image, fmt::format("{} output", o.technique)); !r.ok()) return failCommand(cmd, r.error().message);
+    ToneMap toneMap;
+    toneMap.exposureEv = renderSettings.exposure;
+    toneMap.curve = *parseToneCurve(renderSettings.toneCurve);
+    if (auto r = writeImage(o.out, image, toneMap); !r.ok()) return failCommand(cmd, r.error().message);
+    if (!o.stats.empty()) {
+        nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
+                                {"frame_count", o.frames}};
+        const auto record = renderRunRecord(*scene, **pipeline, frames, (*context)->info(), extra);
+        if (auto r = writeTextFileAtomic(o.stats, record.dump(2) + "\n"); !r.ok()) return failCommand(cmd, r.error().message);
+    }
+    const auto medians = medianPassTimes(frames);
+    spdlog::info("{} on {}: median frame {:.2f} ms GPU, {:.2f} ms CPU", o.technique, scene->name,
+                 medians.value("frame", 0.0), medians.value("cpu", 0.0));
+    return 0;
+}
+
+}  // namespace
+
+void registerRenderCommand(CLI::App& root, CommandAction& action) {
+    auto options = std::make_shared<RenderOptions>();
+    CLI::App* c = root.add_subcommand("render", "render a scene with a technique (headless) into an image");
+    c->add_option("--scene", options->scene, "built-in scene name or scene/model file")->required();
+    c->add_option("--scene-param", options->sceneParams, "built-in scene parameter name=value (repeatable)");
+    c->add_option("--technique", options->technique, "technique name (see `bounce list`)")->capture_default_str();
+    c->add_option("--size", options->size, "image size WIDTHxHEIGHT")->capture_default_str();
+    c->add_option("--frames", options->frames, "frames to render; animation advances, the last is written")
+        ->capture_default_str();
+    c->add_option("--set", options->settings, "setting name=value; renderer.NAME for shared passes (repeatable)");
+    c->add_option("--component", options->component, "full, direct or indirect")->capture_default_str();
+    c->add_option("--out", options->out, "output image (.exr linear radiance, .png tone-mapped)")->required();
+    c->add_option("--stats", options->stats, "run record (JSON): settings, GPU, per-pass timings, counters");
+    c->callback([&action, options] { action = [options] { return runRender(*options); }; });
+}
+
+}  // namespace bounce

@@ -1,0 +1,59 @@
+#include "app/RunRecord.h"
+
+#include <algorithm>
+#include <map>
+
+namespace bounce {
+
+nlohmann::json gpuInfoJson(const gl::GpuInfo& info) {
+    return {{"vendor", info.vendor}, {"renderer", info.renderer}, {"version", info.version}, {"platform", info.platform}};
+}
+
+nlohmann::json frameStatsJson(const FrameStats& s) {
+    nlohmann::json passes = nlohmann::json::object();
+    for (const auto& p : s.passes) passes[p.name] = p.milliseconds;
+    return {{"frame", s.frame}, {"time_s", s.time}, {"cpu_ms", s.cpuMilliseconds}, {"gpu_ms", passes},
+            {"counters", s.counters}};
+}
+
+static double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+nlohmann::json medianPassTimes(const std::vector<FrameStats>& frames) {
+    std::map<std::string, std::vector<double>> byName;
+    std::vector<double> cpu;
+    for (const FrameStats& f : frames) {
+        for (const auto& p : f.passes) byName[p.name].push_back(p.milliseconds);
+        cpu.push_back(f.cpuMilliseconds);
+    }
+    nlohmann::json out = nlohmann::json::object();
+    for (auto& [name, values] : byName) out[name] = median(values);
+    out["cpu"] = median(cpu);
+    return out;
+}
+
+nlohmann::json renderRunRecord(const Scene& scene, Pipeline& pipeline, const std::vector<FrameStats>& frames,
+                               const gl::GpuInfo& gpu, const nlohmann::json& extra) {
+    render::RenderSettings renderSettings = pipeline.renderSettings();
+    nlohmann::json frameList = nlohmann::json::array();
+    for (const FrameStats& f : frames) frameList.push_back(frameStatsJson(f));
+    nlohmann::json record = {
+        {"scene", {{"name", scene.name}, {"source", scene.source}, {"triangles", scene.triangleCount()},
+                   {"lights", scene.lights.size()}}},
+        {"technique", std::string(pipeline.technique().name())},
+        {"settings", settingsToJson(pipeline.technique())},
+        {"renderer", settingsToJson(renderSettings)},
+        {"size", {pipeline.size().x, pipeline.size().y}},
+        {"gpu", gpuInfoJson(gpu)},
+        {"frames", frameList},
+        {"median_ms", medianPassTimes(frames)},
+    };
+    for (const auto& [k, v] : extra.items()) record[k] = v;
+    return record;
+}
+
+}  // namespace bounce
