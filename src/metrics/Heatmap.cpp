@@ -24,6 +24,7 @@ constexpr float kLightnessHigh = 95.0f;   // L* at t = 1 (near white)
 constexpr float kHueStartDeg = 300.0f;    // purple
 constexpr float kHueSpanDeg = 150.0f;     // through magenta and red to yellow (90 deg)
 constexpr float kChromaPeak = 80.0f;      // requested chroma scale; clipped to the sRGB gamut
+constexpr float kChromaEaseOff = 0.6f;    // fraction of the chroma given up at t = 1 (pale yellow end)
 constexpr int kColorTableSize = 256;      // one entry per 8-bit output level
 constexpr int kGamutIterations = 24;      // bisection steps on chroma (2^-24 of kChromaPeak)
 
@@ -37,7 +38,7 @@ glm::vec3 designColor(float t) {
     const float hue = (kHueStartDeg + kHueSpanDeg * t) * std::numbers::pi_v<float> / 180.0f;
     // Chroma rises quickly from the black end and eases off towards the light end, where the
     // gamut is narrow for all but yellow.
-    const float wanted = kChromaPeak * std::sqrt(t) * (1.0f - 0.6f * t);
+    const float wanted = kChromaPeak * std::sqrt(t) * (1.0f - kChromaEaseOff * t);
     auto rgbAt = [&](float chroma) {
         return xyzToLinearRgb(cielabToXyz({lightness, chroma * std::cos(hue), chroma * std::sin(hue)}));
     };
@@ -103,8 +104,10 @@ void drawText(Image& image, const std::string& text, int left, int top, int scal
 
 std::string label(float value) { return fmt::format("{:.3g}", value); }
 
-constexpr glm::vec3 kBackground(0.12f);  // dark grey legend strip, distinct from the map's black end
-constexpr glm::vec3 kLabelColor(0.9f);
+// Legend strip: mid grey (display value, about L* 32), so it is distinct from the map's near-black
+// low end and still gives the light labels contrast.
+constexpr glm::vec3 kBackground(0.3f);
+constexpr glm::vec3 kLabelColor(0.95f);
 constexpr int kMinLabelWidth = 32;       // narrower images get a bar without labels
 
 }  // namespace
