@@ -1,0 +1,66 @@
+#pragma once
+// Full-reference image error metrics (definitions in docs/metrics.md and
+// shared/specs/analytic-tests.md, "Metric definitions"):
+//   on linear values:        MSE, RMSE, relMSE, MAE, HDR-FLIP
+//   on tone-mapped images:   PSNR, SSIM, LDR-FLIP (CompareOptions states the display transforms)
+// Argument order is (test, reference) throughout.
+#include "core/Error.h"
+#include "core/Image.h"
+#include "core/ToneMap.h"
+#include "metrics/ErrorMap.h"
+#include "metrics/Flip.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace bounce {
+
+// ε of relMSE, in the image's linear units: keeps black reference pixels from dominating.
+inline constexpr double kRelMseEpsilon = 0.01;
+
+// Display transform of an image read from PNG: readImage() decodes its sRGB values to linear, and
+// clamping at 0 EV re-encodes exactly the stored values.
+inline constexpr ToneMap kDisplayImageToneMap{0.0f, ToneCurve::Clamp};
+
+struct CompareOptions {
+    // Display transforms for PSNR, SSIM and LDR-FLIP, one per input so that a radiance image can be
+    // compared with a display image. For EXR radiance, {0, Aces} is what `bounce render` writes to
+    // PNG; for PNG inputs use kDisplayImageToneMap.
+    ToneMap testToneMap{0.0f, ToneCurve::Aces};
+    ToneMap referenceToneMap{0.0f, ToneCurve::Aces};
+    double pixelsPerDegree = kFlipDefaultPixelsPerDegree;  // FLIP observer
+};
+
+struct ErrorMetrics {
+    double mse = 0.0;     // mean over pixels and channels of (x - r)^2, linear
+    double rmse = 0.0;    // sqrt(mse)
+    double relMse = 0.0;  // mean of (x - r)^2 / (r^2 + ε), ε = kRelMseEpsilon, linear
+    double mae = 0.0;     // mean of |x - r|, linear
+    double psnr = 0.0;    // 10 log10(1 / MSE of display values), dB; +infinity for identical displays
+    double ssim = 1.0;    // mean SSIM of the display images (metrics/Ssim.h)
+    double flipLdr = 0.0; // mean LDR-FLIP of the display images
+    double flipHdr = 0.0; // mean HDR-FLIP of the linear images
+    HdrFlipExposures hdrFlipExposures;  // the bracket HDR-FLIP used (from the reference)
+};
+
+// Per-pixel maps a caller may want alongside the pooled numbers (e.g. for a heat map).
+struct CompareMaps {
+    ErrorMap flipLdr, flipHdr;
+};
+
+// Fails (naming both sizes) when the images differ in size, are empty, or hold non-finite values.
+Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, const CompareOptions& options = {},
+                                     CompareMaps* maps = nullptr);
+
+// Per-pixel maps, each the mean over the three channels. The images must have the same size (checked).
+ErrorMap absoluteErrorMap(const Image& test, const Image& reference);
+ErrorMap squaredErrorMap(const Image& test, const Image& reference);
+ErrorMap relativeSquaredErrorMap(const Image& test, const Image& reference, double epsilon = kRelMseEpsilon);
+
+// PSNR in dB of two display images with peak value 1; +infinity when they are identical.
+double psnr(const Image& testDisplay, const Image& referenceDisplay);
+
+// {"mse":..., ..., "hdrFlipExposures": {"startEv", "stopEv", "count"}}; an infinite PSNR is written as null
+// (JSON has no infinity).
+nlohmann::json toJson(const ErrorMetrics& metrics);
+
+}  // namespace bounce
