@@ -1,1 +1,79 @@
-# Placeholder until the CLI lands; replaced by the bad-input cases.
+# End-to-end bad-input cases of the `bounce` CLI: each must exit non-zero with exactly one line on
+# stderr naming what is wrong, and leave no output file behind. Run by ctest (cli_bad_input).
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+set(failures 0)
+
+function(expect_failure name expected_text output)
+  execute_process(COMMAND ${BOUNCE} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(STRIP "${err}" err_stripped)
+  string(REGEX MATCHALL "\n" newlines "${err_stripped}")
+  list(LENGTH newlines extra_lines)
+  set(ok TRUE)
+  if(rc EQUAL 0)
+    message(SEND_ERROR "${name}: expected a non-zero exit, got 0")
+    set(ok FALSE)
+  endif()
+  if(NOT extra_lines EQUAL 0)
+    message(SEND_ERROR "${name}: expected a one-line error, got:\n${err}")
+    set(ok FALSE)
+  endif()
+  string(FIND "${err}" "${expected_text}" pos)
+  if(pos EQUAL -1)
+    message(SEND_ERROR "${name}: error does not mention '${expected_text}':\n${err}")
+    set(ok FALSE)
+  endif()
+  if(NOT "${output}" STREQUAL "" AND EXISTS "${output}")
+    message(SEND_ERROR "${name}: left an output file ${output}")
+    set(ok FALSE)
+  endif()
+  if(ok)
+    message(STATUS "ok: ${name}: ${err_stripped}")
+  endif()
+endfunction()
+
+set(png ${WORK}/out.png)
+expect_failure("unknown command" "frobnicate" "" frobnicate)
+expect_failure("unknown technique" "unknown technique 'nope'" ${png}
+               render --scene cornell-box --technique nope --size 8x8 --out ${png})
+expect_failure("unknown scene" "no-such-scene" ${png} render --scene no-such-scene --size 8x8 --out ${png})
+expect_failure("unknown setting" "unknown setting 'bogus'" ${png}
+               render --scene cornell-box --technique ambient --set bogus=1 --size 8x8 --out ${png})
+expect_failure("setting out of range" "out of range" ${png}
+               render --scene cornell-box --set renderer.shadowMapSize=3 --size 8x8 --out ${png})
+expect_failure("setting not a number" "expected a finite number" ${png}
+               render --scene cornell-box --technique ambient --set radiance=abc --size 8x8 --out ${png})
+expect_failure("setting without =" "name=value" ${png} render --scene cornell-box --set radiance --size 8x8 --out ${png})
+expect_failure("other technique's setting" "another technique" ${png}
+               render --scene cornell-box --technique direct --set ambient.radiance=1 --size 8x8 --out ${png})
+expect_failure("zero size" "--size '0x8'" ${png} render --scene cornell-box --size 0x8 --out ${png})
+expect_failure("malformed size" "--size 'big'" ${png} render --scene cornell-box --size big --out ${png})
+expect_failure("zero frames" "--frames 0" ${png} render --scene cornell-box --frames 0 --size 8x8 --out ${png})
+expect_failure("bad component" "unknown component" ${png}
+               render --scene cornell-box --component both --size 8x8 --out ${png})
+expect_failure("bad output extension" "unsupported image extension" ${WORK}/out.bmp
+               render --scene cornell-box --size 8x8 --out ${WORK}/out.bmp)
+expect_failure("output folder missing" "does not exist" ${WORK}/missing/out.png
+               render --scene cornell-box --size 8x8 --out ${WORK}/missing/out.png)
+expect_failure("stats folder missing" "does not exist" ${png}
+               render --scene cornell-box --size 8x8 --out ${png} --stats ${WORK}/missing/run.json)
+expect_failure("missing scene file" "not found" ${png} render --scene ${WORK}/absent.json --size 8x8 --out ${png})
+file(WRITE ${WORK}/malformed.json "{ \"objects\": [ 1, 2,\n")
+expect_failure("malformed scene file" "malformed.json" ${png} render --scene ${WORK}/malformed.json --size 8x8 --out ${png})
+file(WRITE ${WORK}/garbage.obj "v 0 0 0\nv nan 1 0\nv 1 0 0\nf 1 2 3\n")
+expect_failure("NaN in a model" "garbage.obj" ${png} render --scene ${WORK}/garbage.obj --size 8x8 --out ${png})
+file(WRITE ${WORK}/degenerate.obj "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")
+expect_failure("degenerate geometry" "degenerate" ${png} render --scene ${WORK}/degenerate.obj --size 8x8 --out ${png})
+expect_failure("unknown scene parameter" "triangles" ${png}
+               render --scene cornell-box --scene-param triangles=5 --size 8x8 --out ${png})
+expect_failure("compare missing file" "not found" "" compare ${WORK}/a.exr ${WORK}/b.exr)
+
+# A good run writes the image and the run record.
+execute_process(COMMAND ${BOUNCE} render --scene cornell-box --size 16x16 --out ${png} --stats ${WORK}/run.json
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${png} OR NOT EXISTS ${WORK}/run.json)
+  message(SEND_ERROR "good render failed (${rc}): ${err}")
+endif()
+file(WRITE ${WORK}/small.exr "")
+execute_process(COMMAND ${BOUNCE} render --scene cornell-box --size 8x8 --out ${WORK}/small.exr RESULT_VARIABLE rc)
+expect_failure("compare different sizes" "size" "" compare ${png} ${WORK}/small.exr)
