@@ -28,6 +28,21 @@ const std::vector<BuiltinEntry>& registry() {
           "Cornell box with the spot light orbiting (Catmull-Rom loop) and the tall block turning; 4 s loop",
           {}},
          buildCornellBoxDynamic},
+        {{"furnace",
+          "Closed 2 m cube, every surface of albedo rho emitting Le, no lights: radiance is Le/(1-rho) everywhere",
+          {{"albedo", "0.5: albedo rho of every surface, in [0, 1]"},
+           {"emission", "1.0: emitted radiance Le of every surface, W/(m^2 sr)"}}},
+         buildFurnace},
+        {{"two-rooms",
+          "Two open-topped rooms sharing a thin wall, a point light in the lit room (x < 0) only; the dark room "
+          "(x > 0) has zero radiance, so any light there is leakage",
+          {{"wallThickness", "0.02: thickness of the shared wall, metres, in (0, 0.5]"}}},
+         buildTwoRooms},
+        {{"atrium",
+          "Procedural courtyard with two storeys of arcades, drapes and a fountain, open sky and sun; the "
+          "Sponza-class stand-in",
+          {{"triangles", "100000: triangle budget; the tessellation lands within 10 %"}}},
+         buildAtrium},
     };
     return entries;
 }
