@@ -35,9 +35,10 @@ constexpr float kBayDepth = 2.0f * kColumnRadius;
 constexpr double kDefaultTriangles = 100000.0;
 constexpr double kMaxTriangles = 2.0e7;  // ~1 GB of vertex data: beyond any GI lab's GPU budget
 
-// Sun: propagation direction (from the upper -x side, ~28 degrees from vertical) and irradiance on a
+// Sun: propagation direction (from above the west (-x) and south (+z) walls, ~28 degrees from vertical;
+// it lights the east arcade and the far north wall the camera looks at) and irradiance on a
 // surface facing it. Paving of albedo 0.5 facing up then shows 0.5 * 6 * cos / pi = 0.85 W/(m^2 sr).
-constexpr glm::vec3 kSunDirection{0.35f, -0.9f, 0.2f};
+constexpr glm::vec3 kSunDirection{0.35f, -0.9f, -0.2f};
 constexpr glm::vec3 kSunIrradiance{6.0f, 5.7f, 5.0f};  // W/m^2, slightly warm
 
 struct Tessellation {
@@ -139,11 +140,12 @@ void generate(const Tessellation& t, bool countOnly, std::deque<Part>& parts) {
 
     // Fountain: a basin wall, its water surface and a central spout column.
     MeshBuilder& fountain = part("fountain", kStone);
+    // The water is level with the rim so the basin wall, one-sided, is only ever seen from outside.
     fountain.cylinder({0, 0, 0}, 1.5f, 0.6f, t.fountainSegments, 1);
     fountain.cylinder({0, 0, 0}, 0.2f, 1.8f, t.columnSegments, t.columnRings);
     fountain.disk({0, 1.8f, 0}, 0.2f, up, t.columnSegments);
     MeshBuilder& water = part("fountain-water", kWater);
-    water.disk({0, 0.5f, 0}, 1.5f, up, t.fountainSegments);
+    water.disk({0, 0.6f, 0}, 1.5f, up, t.fountainSegments);
 }
 
 size_t countTriangles(double density) {

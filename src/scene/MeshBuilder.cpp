@@ -171,6 +171,12 @@ void MeshBuilder::archBay(glm::vec3 centre, glm::vec3 along, glm::vec3 across, f
         quad(in0 + half, in1 + half, sq1 + half, sq0 + half, across);
         quad(in0 - half, in1 - half, sq1 - half, sq0 - half, -across);
     }
+    // Soffits between the opening and the bay's ends, on the springing line: the column under each end is
+    // round and does not cover the bay's square corners.
+    for (float side : {-1.0f, 1.0f}) {
+        const glm::vec3 in = centre + side * innerRadius * along, out = centre + side * halfSpan * along;
+        quad(in - half, out - half, out + half, in + half, -up);
+    }
     const glm::vec3 top = centre + halfSpan * up;
     quad(top - halfSpan * along - half, top + halfSpan * along - half, top + halfSpan * along + half,
          top - halfSpan * along + half, up);

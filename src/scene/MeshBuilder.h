@@ -42,7 +42,7 @@ public:
     // One bay of an arcade: a block `2 * halfSpan` wide along `along` (unit), `halfSpan` high above the
     // springing line through `centre`, `depth` thick along `across` (unit, horizontal), pierced by a
     // semicircular opening of `innerRadius` centred at `centre`. Emits both faces (the spandrels), the
-    // intrados and the flat top; the bay's ends are shared with neighbours or piers and are left open.
+    // intrados, the soffits beside the opening and the flat top; the bay's ends are shared with neighbours or piers and are left open.
     // `segments` is rounded up to a multiple of 4 so the square's corners fall on segment ends.
     void archBay(glm::vec3 centre, glm::vec3 along, glm::vec3 across, float halfSpan, float innerRadius,
                  float depth, int segments);
