@@ -287,7 +287,7 @@ private:
         BOUNCE_TRY(const std::string rel, text(j["model"], p + "/model"));
         ModelPlacement placement;
         placement.name = name;
-        placement.origin = origin(p + "/model");
+        placement.origin = origin(p + "/model") + ": " + what;
         if (j.contains("transform")) {
             BOUNCE_TRY(placement.transform, transform(j["transform"], p + "/transform"));
         }
@@ -481,6 +481,16 @@ Expected<Scene> loadJsonScene(const fs::path& path) {
         const auto colon = what.find(": ");
         if (colon != std::string::npos) what = what.substr(colon + 2);
         return makeError("{}:{}:{}: malformed JSON: {}", path.string(), line, column, what);
+    } catch (const json::out_of_range& e) {
+        // nlohmann reports an overflowing number ("number overflow parsing '1e999'") without a position;
+        // the quoted token locates it.
+        std::string what = e.what();
+        const size_t open = what.find('\''), close = what.rfind('\'');
+        const std::string token = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+        const size_t at = token.empty() ? std::string::npos : text.find(token);
+        if (at == std::string::npos) return makeError("{}: malformed JSON: {}", path.string(), what);
+        const auto [line, column] = JsonLocator::lineColumn(text, at);
+        return makeError("{}:{}:{}: number {} is not finite (overflows)", path.string(), line, column, token);
     }
     JsonSceneReader reader(path, text);
     return reader.read(root);
