@@ -6,6 +6,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <functional>
 #include <string>
 
 namespace bounce {
@@ -13,6 +14,12 @@ namespace bounce {
 class MeshBuilder {
 public:
     explicit MeshBuilder(std::string name) { m_mesh.name = std::move(name); }
+    // A builder that only counts triangles (for sizing tessellation to a triangle budget).
+    static MeshBuilder counter() {
+        MeshBuilder b("");
+        b.m_countOnly = true;
+        return b;
+    }
 
     // A triangle whose front side faces `front` (winding is flipped when needed).
     void triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 front);
@@ -27,19 +34,30 @@ public:
     // A vertical cylinder side (no caps) of `radius` from base centre `base` up `height`, with smooth
     // outward normals, `segments` around and `rings` along the axis.
     void cylinder(glm::vec3 base, float radius, float height, int segments, int rings);
-    // A semicircular arch in the plane spanned by `along` (unit, the span direction) and +y, centred
-    // at `centre`, between radii `innerRadius` and `outerRadius`, extruded `depth` along `across`
-    // (unit, perpendicular to `along`) symmetric about the centre: intrados, extrados and both faces.
-    void arch(glm::vec3 centre, glm::vec3 along, glm::vec3 across, float innerRadius, float outerRadius,
-              float depth, int segments);
+    // A parametric patch p(u, v), u, v in [0, 1], split into nu x nv cells, with normals from central
+    // differences oriented toward `front` at the patch centre (one patch is assumed to face one way).
+    void surface(int nu, int nv, const std::function<glm::vec3(float, float)>& p, glm::vec3 front);
+    // A flat disc facing `front` (unit), as a fan of `segments` triangles.
+    void disk(glm::vec3 centre, float radius, glm::vec3 front, int segments);
+    // One bay of an arcade: a block `2 * halfSpan` wide along `along` (unit), `halfSpan` high above the
+    // springing line through `centre`, `depth` thick along `across` (unit, horizontal), pierced by a
+    // semicircular opening of `innerRadius` centred at `centre`. Emits both faces (the spandrels), the
+    // intrados, the soffits beside the opening and the flat top; the bay's ends are shared with neighbours or piers and are left open.
+    // `segments` is rounded up to a multiple of 4 so the square's corners fall on segment ends.
+    void archBay(glm::vec3 centre, glm::vec3 along, glm::vec3 across, float halfSpan, float innerRadius,
+                 float depth, int segments);
 
-    size_t triangleCount() const { return m_mesh.indices.size() / 3; }
+    size_t triangleCount() const { return m_triangleCount; }
     Mesh take() { return std::move(m_mesh); }
 
 private:
     uint32_t vertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv);
+    void indices(uint32_t a, uint32_t b, uint32_t c);
 
     Mesh m_mesh;
+    bool m_countOnly = false;
+    uint32_t m_vertexCount = 0;
+    size_t m_triangleCount = 0;
 };
 
 }  // namespace bounce

@@ -1,6 +1,8 @@
 #include "scene/SceneLoader.h"
 
 #include "scene/BuiltinScenes.h"
+#include "scene/JsonSceneLoader.h"
+#include "scene/ModelLoader.h"
 
 #include <algorithm>
 #include <cctype>
@@ -28,6 +30,21 @@ const std::vector<BuiltinEntry>& registry() {
           "Cornell box with the spot light orbiting (Catmull-Rom loop) and the tall block turning; 4 s loop",
           {}},
          buildCornellBoxDynamic},
+        {{"furnace",
+          "Closed 2 m cube, every surface of albedo rho emitting Le, no lights: radiance is Le/(1-rho) everywhere",
+          {{"albedo", "0.5: albedo rho of every surface, in [0, 1]"},
+           {"emission", "1.0: emitted radiance Le of every surface, W/(m^2 sr)"}}},
+         buildFurnace},
+        {{"two-rooms",
+          "Two open-topped rooms sharing a thin wall, a point light in the lit room (x < 0) only; the dark room "
+          "(x > 0) has zero radiance, so any light there is leakage",
+          {{"wallThickness", "0.02: thickness of the shared wall, metres, in (0, 0.5]"}}},
+         buildTwoRooms},
+        {{"atrium",
+          "Procedural courtyard with two storeys of arcades, drapes and a fountain, open sky and sun; the "
+          "Sponza-class stand-in",
+          {{"triangles", "100000: triangle budget; the tessellation lands within 10 %"}}},
+         buildAtrium},
     };
     return entries;
 }
@@ -72,7 +89,14 @@ Expected<Scene> loadScene(std::string_view nameOrPath, const SceneParams& params
     if (!isFile)
         return makeError("unknown scene '{}' (built-ins: {}; or a scene file .json .gltf .glb .obj .ply)", name,
                          knownBuiltins());
-    return makeError("{}: loading scene files is not available in this build", name);
+    if (!params.empty())
+        return makeError("{}: scene parameters ({}) apply to built-in scenes only", name, params.begin()->first);
+    const std::filesystem::path path(name);
+    if (!std::filesystem::exists(path)) return makeError("{}: scene file not found", name);
+    Expected<Scene> scene = ext == ".json" ? loadJsonScene(path) : loadModelScene(path);
+    if (!scene.ok()) return scene.error();
+    BOUNCE_TRY_VOID(finalizeScene(*scene));
+    return scene;
 }
 
 }  // namespace bounce
