@@ -8,7 +8,7 @@ namespace bounce {
 
 int failCommand(const std::string& command, const std::string& message) {
     // One line: multi-line messages (shader logs) are rare and keep their first line first.
-    std::cerr << "bounce " << command << ": " << message << "\n";
+    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << message << "\n";
     return 1;
 }
 
@@ -24,6 +24,23 @@ int runCli(int argc, char** argv) {
     registerViewCommand(app, action);
     registerReferenceCommand(app, action);
     registerCompareCommand(app, action);
+    // CLI11 reports an unknown command as "a subcommand is required"; name it instead.
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--log-level") {
+            ++i;
+            continue;
+        }
+        if (arg.rfind("-", 0) == 0) break;
+        bool known = false;
+        std::string names;
+        for (const CLI::App* sub : app.get_subcommands({})) {
+            known |= sub->get_name() == arg;
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (!known) return failCommand("", fmt::format("unknown command '{}' (known: {})", arg, names));
+        break;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
