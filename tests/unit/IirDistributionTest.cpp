@@ -136,7 +136,13 @@ TEST(IirSpotDiscMap, NusseltAnalogForTheCosineSpot) {
         EXPECT_NEAR(glm::distance(lifted, glm::dvec3(p, std::sqrt(1.0 - glm::dot(p, p)))), 0.0, 1e-13);
     }
     EXPECT_FALSE(map.toDisc({0.3, 0.1, -0.2}).has_value());  // behind the spot
-    EXPECT_FALSE(map.toDisc({1.0, 0.0, 0.0}).has_value());   // alpha = c exactly is outside
+    // The cone is closed: alpha = c maps to the rim, where the empty-circle search puts points.
+    const auto horizon = map.toDisc({1.0, 0.0, 0.0});
+    ASSERT_TRUE(horizon.has_value());
+    EXPECT_NEAR(glm::distance(*horizon, glm::dvec2(1.0, 0.0)), 0.0, 1e-15);
+    const SpotDiscMap narrow(2.0, 0.5);
+    EXPECT_FALSE(narrow.toDisc({std::sin(0.5 + 1e-9), 0.0, std::cos(0.5 + 1e-9)}).has_value());
+    EXPECT_TRUE(narrow.toDisc({std::sin(0.5 - 1e-9), 0.0, std::cos(0.5 - 1e-9)}).has_value());
 }
 
 TEST(IirSpotDiscMap, RoundTripsAndRespectsTheCone) {
@@ -800,7 +806,7 @@ TEST(IirVplDistribution, SpotConeInvalidatesSamplesThatLeaveIt) {
     uint32_t outside = 0;
     for (const VplSample& s : d.samples()) {
         const glm::dvec3 direction = glm::normalize(glm::dvec3(s.positionWorld) - glm::dvec3(pose.position));
-        if (glm::dot(direction, glm::normalize(glm::dvec3(pose.axis))) <= std::cos(0.6)) ++outside;
+        if (glm::dot(direction, glm::normalize(glm::dvec3(pose.axis))) < std::cos(0.6)) ++outside;
     }
     ASSERT_GT(outside, 0u);
     d.removeInvalid(pose, kAllValid);

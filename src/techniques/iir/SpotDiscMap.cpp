@@ -16,8 +16,11 @@ SpotDiscMap::SpotDiscMap(double falloffExponent, double cutoffAngle) {
     BOUNCE_CHECK(cutoffAngle > 0.0, "spot cutoff angle {} rad is not positive", cutoffAngle);
     m_exponentPlusOne = falloffExponent + 1.0;
     m_cutoffAngle = std::min(cutoffAngle, glm::half_pi<double>());
+    // At 90 degrees 1 - cos(c) must be exactly 1 so that the horizon of the 180-degree spot is inside
+    // the closed cone (cos of the double nearest pi/2 is 6e-17, not 0); 2 sin^2(c/2) keeps narrow
+    // cones free of cancellation.
     const double halfSin = std::sin(0.5 * m_cutoffAngle);
-    m_cutoffOneMinusCos = 2.0 * halfSin * halfSin;
+    m_cutoffOneMinusCos = m_cutoffAngle >= glm::half_pi<double>() ? 1.0 : 2.0 * halfSin * halfSin;
     m_coneFlux = fluxBelow(m_cutoffOneMinusCos);
 }
 
@@ -40,7 +43,9 @@ std::optional<glm::dvec2> SpotDiscMap::toDisc(const glm::dvec3& directionLocal) 
     const double radial2 = d.x * d.x + d.y * d.y;  // sin^2(alpha)
     // 1 - cos(alpha) without cancellation near the axis: sin^2 / (1 + cos).
     const double oneMinusCos = d.z > 0.0 ? radial2 / (1.0 + d.z) : 1.0 - d.z;
-    if (!(oneMinusCos < m_cutoffOneMinusCos)) return std::nullopt;
+    // The cone is closed: the largest-empty-circle search puts points on the rim (r = 1, alpha = c),
+    // and they must map back.
+    if (!(oneMinusCos <= m_cutoffOneMinusCos)) return std::nullopt;
     if (radial2 == 0.0) return glm::dvec2(0.0);
     const double r = std::min(1.0, std::sqrt(fluxBelow(oneMinusCos) / m_coneFlux));
     return glm::dvec2(d.x, d.y) * (r / std::sqrt(radial2));

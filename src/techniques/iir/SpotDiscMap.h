@@ -26,8 +26,8 @@ public:
     SpotDiscMap(double falloffExponent, double cutoffAngle);
 
     // The disc point of a direction given in the spot's frame (z = spot axis); it need not be unit
-    // length. Empty when the direction is outside the cone (alpha >= c) or zero: such a VPL is outside
-    // the illumination region (§4.4 validity condition 2).
+    // length. Empty when the direction is outside the closed cone (alpha > c) or zero: such a VPL is
+    // outside the illumination region (§4.4 validity condition 2).
     std::optional<glm::dvec2> toDisc(const glm::dvec3& directionLocal) const;
     // The unit direction (spot frame) of a point of the closed unit disc; points outside are
     // projected onto the rim.
