@@ -710,6 +710,7 @@ TEST(IirVplDistribution, CountRecoversUnderASweepingInvalidRegion) {
                      [&](SlotId, const VplSample& s) { return !(s.domainPoint.x >= from && s.domainPoint.x < to); },
                      hitAtOneMetre(pose.position));
         const uint32_t valid = previousCount - stats.invalidRejected;
+        EXPECT_EQ(stats.valid, valid);
         const uint32_t expectedDeleted = 256 - valid >= 4 ? 0 : 4 - (256 - valid);
         EXPECT_EQ(stats.deleted, expectedDeleted) << "frame " << frame;
         EXPECT_EQ(stats.createdVpls, std::min<uint32_t>(8, 256 - valid + expectedDeleted)) << "frame " << frame;

@@ -199,6 +199,7 @@ void VplDistribution::removeInvalid(const LightPose& pose, const ValidityTest& i
             ++m.stats.invalidCoincident;
         }
     }
+    m.stats.valid = m.used;
     m.stats.validityMs = millisecondsSince(start);
 }
 

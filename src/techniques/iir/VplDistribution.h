@@ -91,6 +91,7 @@ struct VplFrameStats {
     uint32_t invalidOutsideCone = 0;   // mapped outside the spot cone (or onto the light itself)
     uint32_t invalidRejected = 0;      // the caller's validity test failed
     uint32_t invalidCoincident = 0;    // mapped onto another sample's point (one of the two is kept)
+    uint32_t valid = 0;                // samplesAtStart minus the three kinds of invalid
     uint32_t deleted = 0;              // valid samples removed by the shortest-edge rule
     uint32_t createdVpls = 0;
     uint32_t createdMisses = 0;
