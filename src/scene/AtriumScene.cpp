@@ -166,7 +166,7 @@ Expected<Scene> buildAtrium(const SceneParams& params) {
     // Every tessellation level is non-decreasing in the density, so the count is too: bisect.
     double lo = 0.0, hi = 1.0;
     while (static_cast<double>(countTriangles(hi)) < target) hi *= 2.0;
-    constexpr int kBisections = 40;  // far below one triangle of resolution at any budget
+    constexpr int kBisections = 30;  // density to 1e-9 relative: below one tessellation step at any budget
     for (int i = 0; i < kBisections; ++i) {
         const double mid = 0.5 * (lo + hi);
         (static_cast<double>(countTriangles(mid)) < target ? lo : hi) = mid;
