@@ -111,9 +111,10 @@ void generate(const Tessellation& t, bool countOnly, std::deque<Part>& parts) {
                 arches.archBay({cx, springing, z}, {0, 0, 1}, {1, 0, 0}, kBayHalfSpan, kBayInnerRadius, kBayDepth,
                                t.baySegments);
             }
-            // End piers tie each row's end bays to the end walls.
+            // End piers tie each row to the end walls. They reach the end columns' axes, where the end bays'
+            // open ends are, so no gap shows the inside of a bay.
             const float top = (storey + 1) * kStoreyHeight;
-            const float endZ = -L + kBayHalfSpan - kColumnRadius;
+            const float endZ = -L + kBayHalfSpan;
             columns.axisBox({cx - kColumnRadius, base, -L}, {cx + kColumnRadius, top, endZ}, true, 1);
             columns.axisBox({cx - kColumnRadius, base, -endZ}, {cx + kColumnRadius, top, L}, true, 1);
             // Gallery floor (storey 0) and roof (storey 1) from the arcade to the side wall.
