@@ -1,0 +1,93 @@
+#include "scene/SceneLoader.h"
+
+#include "scene/BuiltinScenes.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace bounce {
+
+namespace {
+
+using Builder = Expected<Scene> (*)(const SceneParams&);
+
+struct BuiltinEntry {
+    BuiltinSceneInfo info;
+    Builder build;
+};
+
+const std::vector<BuiltinEntry>& registry() {
+    static const std::vector<BuiltinEntry> entries = {
+        {{"cornell-box",
+          "Cornell box (measured geometry and albedos), spot light under the ceiling pointing down",
+          {}},
+         buildCornellBox},
+        {{"cornell-box-area", "Cornell box lit by its rectangular ceiling area light", {}}, buildCornellBoxArea},
+        {{"cornell-box-dynamic",
+          "Cornell box with the spot light orbiting (Catmull-Rom loop) and the tall block turning; 4 s loop",
+          {}},
+         buildCornellBoxDynamic},
+        {{"furnace",
+          "Closed 2 m cube, every surface of albedo rho emitting Le, no lights: radiance is Le/(1-rho) everywhere",
+          {{"albedo", "0.5: albedo rho of every surface, in [0, 1]"},
+           {"emission", "1.0: emitted radiance Le of every surface, W/(m^2 sr)"}}},
+         buildFurnace},
+        {{"two-rooms",
+          "Two open-topped rooms sharing a thin wall, a point light in the lit room (x < 0) only; the dark room "
+          "(x > 0) has zero radiance, so any light there is leakage",
+          {{"wallThickness", "0.02: thickness of the shared wall, metres, in (0, 0.5]"}}},
+         buildTwoRooms},
+        {{"atrium",
+          "Procedural courtyard with two storeys of arcades, drapes and a fountain, open sky and sun; the "
+          "Sponza-class stand-in",
+          {{"triangles", "100000: triangle budget; the tessellation lands within 10 %"}}},
+         buildAtrium},
+    };
+    return entries;
+}
+
+std::string knownBuiltins() {
+    std::string names;
+    for (const BuiltinEntry& e : registry()) names += (names.empty() ? "" : ", ") + e.info.name;
+    return names;
+}
+
+}  // namespace
+
+const std::vector<BuiltinSceneInfo>& builtinScenes() {
+    static const std::vector<BuiltinSceneInfo> infos = [] {
+        std::vector<BuiltinSceneInfo> out;
+        for (const BuiltinEntry& e : registry()) out.push_back(e.info);
+        return out;
+    }();
+    return infos;
+}
+
+Expected<Scene> loadScene(std::string_view nameOrPath, const SceneParams& params) {
+    const std::string name(nameOrPath);
+    const auto& entries = registry();
+    const auto it = std::find_if(entries.begin(), entries.end(), [&](const BuiltinEntry& e) { return e.info.name == name; });
+    if (it != entries.end()) {
+        for (const auto& [key, value] : params) {
+            if (it->info.params.count(key)) continue;
+            std::string known;
+            for (const auto& [k, doc] : it->info.params) known += (known.empty() ? "" : ", ") + k;
+            return makeError("scene '{}': unknown parameter '{}' (known: {})", name, key,
+                             known.empty() ? "none" : known);
+        }
+        BOUNCE_TRY(Scene scene, it->build(params));
+        BOUNCE_TRY_VOID(finalizeScene(scene));
+        return scene;
+    }
+
+    std::string ext = std::filesystem::path(name).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool isFile = ext == ".json" || ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ply";
+    if (!isFile)
+        return makeError("unknown scene '{}' (built-ins: {}; or a scene file .json .gltf .glb .obj .ply)", name,
+                         knownBuiltins());
+    return makeError("{}: loading scene files is not available in this build", name);
+}
+
+}  // namespace bounce
