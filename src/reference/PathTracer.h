@@ -90,18 +90,23 @@ public:
         const Material* material = nullptr;  // null for area lights
         const Image* texture = nullptr;      // base-colour texture, or null
         glm::vec3 emitted{0.0f};             // radiance of the front side (both sides if twoSided)
+        glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
         bool emissive = false;
         bool twoSided = false;
-        bool absorber = false;  // area-light rectangles: emit, never reflect
+        bool absorber = false;    // area-light rectangles: emit, never reflect
+        bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
     };
 
 private:
     struct Counters;
-    struct Accumulator;
+    struct PixelSums;
     PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree);
-    void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, Accumulator& acc,
+    void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
                     Counters& counters) const;
-    glm::vec3 tracePath(Rng& rng, CameraRay ray, Counters& counters) const;
+    // Continues a camera path whose first intersection (geomId, or RTC_INVALID_GEOMETRY_ID for a
+    // miss) the packet tracer already found.
+    glm::vec3 tracePath(Rng& rng, const CameraRay& ray, const RTCHit& firstHit, float firstT,
+                        Counters& counters) const;
 
     const Scene* m_scene;
     PathTracerSettings m_settings;
