@@ -394,47 +394,63 @@ PathTracerResult PathTracer::render(const ProgressCallback& progress) const {
         std::clamp<uint64_t>((kMinPathsPerPass + pixels - 1) / pixels, 1, target));
     const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
 
-    std::atomic<uint64_t> rays{0}, shadowRays{0}, invalid{0};
     tbb::task_arena arena(m_settings.threads > 0 ? m_settings.threads : tbb::task_arena::automatic);
     PathTracerResult result;
+    const bool limited = m_settings.timeLimitSeconds > 0.0;
     const Clock::time_point start = Clock::now();
+    const Clock::time_point deadline =
+        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_settings.timeLimitSeconds));
+    // With a time limit, a pass that cannot finish in time is abandoned and its partial sums
+    // replaced by this copy, so the image holds complete passes only.
+    std::vector<PixelSums> before;
     uint32_t done = 0;
-    double lastPassSeconds = 0.0;
     while (done < target) {
-        const double elapsed = secondsSince(start);
-        // Start another pass only if it is expected to end within the budget (the first always runs).
-        if (m_settings.timeLimitSeconds > 0.0 && done > 0 && elapsed + lastPassSeconds > m_settings.timeLimitSeconds) {
-            result.stoppedByTimeLimit = true;
-            break;
-        }
         const uint32_t s0 = done, s1 = std::min(target, done + perPass);
-        const Clock::time_point passStart = Clock::now();
+        // The first pass always completes, so there is an image however small the budget.
+        const bool cancellable = limited && done > 0;
+        if (cancellable) before = sums;
+        std::atomic<bool> cancelled{false};
+        std::atomic<uint64_t> rays{0}, shadowRays{0}, invalid{0};
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1),
                               [&](const tbb::blocked_range2d<int>& r) {
                                   Counters local;
                                   for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
-                                      for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx)
+                                      for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                                          if (cancellable && (cancelled.load(std::memory_order_relaxed) ||
+                                                              Clock::now() > deadline)) {
+                                              cancelled = true;
+                                              return;
+                                          }
                                           renderTile(tx * kTileSize, ty * kTileSize,
                                                      std::min(width, (tx + 1) * kTileSize),
                                                      std::min(height, (ty + 1) * kTileSize), s0, s1, sums.data(),
                                                      local);
+                                      }
                                   rays += local.rays;
                                   shadowRays += local.shadowRays;
                                   invalid += local.invalidSamples;
                               });
         });
-        lastPassSeconds = secondsSince(passStart);
+        if (cancelled || (cancellable && Clock::now() > deadline)) {
+            sums.swap(before);
+            result.stoppedByTimeLimit = true;
+            break;
+        }
         done = s1;
+        result.rays += rays;
+        result.shadowRays += shadowRays;
+        result.invalidSamples += invalid;
         if (progress) progress(RenderProgress{done, target, secondsSince(start)});
+        if (limited && done < target && Clock::now() >= deadline) {
+            result.stoppedByTimeLimit = true;
+            break;
+        }
     }
     result.renderSeconds = secondsSince(start);
     result.buildSeconds = m_buildSeconds;
     result.samplesPerPixel = done;
     result.paths = static_cast<uint64_t>(pixels) * done;
-    result.rays = rays.load();
-    result.shadowRays = shadowRays.load();
-    result.invalidSamples = invalid.load();
     if (result.invalidSamples > 0)
         spdlog::warn("reference: {} non-finite samples were dropped", result.invalidSamples);
 

@@ -34,7 +34,9 @@ struct PathTracerSettings {
     bool indirectOnly = false;  // keep only light that reflected at least twice (full minus direct)
     bool diffuseOnly = false;   // BRDF = Lambert lobe alone at every vertex after the first
     uint64_t seed = 0;
-    double timeLimitSeconds = 0.0;  // 0: no limit; else stop after the last pass that fits
+    // 0: no limit. Otherwise the image holds the passes that completed within the limit: a pass
+    // still running at the deadline is abandoned (the first pass always completes).
+    double timeLimitSeconds = 0.0;
     int threads = 0;                // 0: every hardware thread
     uint32_t frame = 0;             // render the scene at time scene.timeOfFrame(frame)
 
@@ -63,9 +65,9 @@ struct PathTracerResult {
     uint32_t samplesPerPixel = 0;     // reached (less than asked when the time limit stopped it)
     bool stoppedByTimeLimit = false;
     double buildSeconds = 0.0;        // BVH and light list
-    double renderSeconds = 0.0;       // tracing only
+    double renderSeconds = 0.0;       // tracing only, including an abandoned pass
     uint64_t paths = 0;               // camera paths = pixels * samplesPerPixel
-    uint64_t rays = 0;                // every ray given to Embree: camera, continuation and shadow rays
+    uint64_t rays = 0;                // rays given to Embree for the kept passes: camera, continuation, shadow
     uint64_t shadowRays = 0;
     uint64_t invalidSamples = 0;      // non-finite samples dropped (0 unless there is a bug)
     NoiseEstimate noise;

@@ -27,11 +27,11 @@ Expected<PathTracerResult> runReferenceJob(const Scene& scene, const ReferenceJo
     return result;
 }
 
-nlohmann::json referenceRunRecord(const Scene& scene, const ReferenceJob& job, const PathTracerResult& result) {
+nlohmann::ordered_json referenceRunRecord(const Scene& scene, const ReferenceJob& job, const PathTracerResult& result) {
     const PathTracerSettings& s = job.settings;
-    nlohmann::json params = nlohmann::json::object();
+    nlohmann::ordered_json params = nlohmann::ordered_json::object();
     for (const auto& [key, value] : job.sceneParams) params[key] = value;
-    nlohmann::json output = {{"path", job.output.string()}};
+    nlohmann::ordered_json output = {{"path", job.output.string()}};
     if (auto format = imageFormatFor(job.output); format && *format == ImageFormat::Png)
         output["toneMap"] = {{"curve", toneCurveName(job.toneMap.curve)}, {"exposureEv", job.toneMap.exposureEv}};
     const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
@@ -42,7 +42,7 @@ nlohmann::json referenceRunRecord(const Scene& scene, const ReferenceJob& job, c
          {{"width", s.width},
           {"height", s.height},
           {"spp", s.samplesPerPixel},
-          {"bounces", s.bounces == PathTracerSettings::kUnbounded ? nlohmann::json("unbounded") : nlohmann::json(s.bounces)},
+          {"bounces", s.bounces == PathTracerSettings::kUnbounded ? nlohmann::ordered_json("unbounded") : nlohmann::ordered_json(s.bounces)},
           {"indirectOnly", s.indirectOnly},
           {"diffuseOnly", s.diffuseOnly},
           {"seed", s.seed},

@@ -29,6 +29,6 @@ Expected<PathTracerResult> runReferenceJob(const Scene& scene, const ReferenceJo
 
 // The run record: scene, settings, what was reached (samples, time, paths/s, rays/s) and the noise
 // left. docs/reference.md "Run record" lists the fields.
-nlohmann::json referenceRunRecord(const Scene& scene, const ReferenceJob& job, const PathTracerResult& result);
+nlohmann::ordered_json referenceRunRecord(const Scene& scene, const ReferenceJob& job, const PathTracerResult& result);
 
 }  // namespace bounce
