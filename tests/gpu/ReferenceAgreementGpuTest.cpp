@@ -24,12 +24,12 @@ double meanLuminance(const Image& image) {
 void expectAgreement(const std::string& sceneName) {
     auto scene = loadScene(sceneName);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    constexpr int kSize = 64;
+    constexpr int kSize = 96;
 
     auto technique = createTechnique("direct");
     ASSERT_TRUE(technique.ok());
     render::RenderSettings rs;
-    rs.shadowMapSize = 2048;  // shadow edges within a fraction of a 64x64 pixel
+    rs.shadowMapSize = 2048;  // shadow edges within a fraction of a 96x96 pixel
     rs.pcfRadius = 0;         // hard shadows, as the reference's point-light shadows
     auto pipeline = Pipeline::create(*scene, std::move(*technique), {kSize, kSize}, rs);
     ASSERT_TRUE(pipeline.ok()) << pipeline.error().message;
@@ -44,25 +44,38 @@ void expectAgreement(const std::string& sceneName) {
     ASSERT_TRUE(tracer.ok()) << tracer.error().message;
     const PathTracerResult ref = tracer->render();
 
-    // 1. Image means agree within three standard errors of the reference's mean, plus 1 % for what
-    //    the two sample differently: the GPU shades pixel centres, the reference integrates each
-    //    pixel's footprint (geometric and shadow edges).
-    const double gpuMean = meanLuminance(gpu), refMean = meanLuminance(ref.radiance);
-    ASSERT_GT(refMean, 0.0);
-    const double tolerance = 3.0 * ref.noise.imageRelativeError + 0.01;
-    EXPECT_NEAR(gpuMean / refMean, 1.0, tolerance) << "gpu " << gpuMean << " reference " << refMean;
-
-    // 2. Pixel by pixel: away from edges both are exact, so 90 % of the lit pixels must agree within
-    //    5 % (the other 10 % allows for pixels straddling an edge, about 4 per row at 64x64).
+    // The GPU shades pixel centres while the reference integrates each pixel's footprint, so pixels
+    // on a geometric or shadow edge legitimately differ (at 64x64 they are ~10 % of the lit area and
+    // bias the image mean by ~5 %). Compare away from edges: a pixel is interior when the reference
+    // is locally linear in x and y (second differences under 5 % of its value): the spot's smooth
+    // falloff passes, edges and shadow boundaries do not.
+    auto interior = [&](int x, int y) {
+        auto L = [&](int px, int py) { return luminance(ref.radiance.at(px, py)); };
+        const float c = L(x, y);
+        const float dxx = L(x - 1, y) + L(x + 1, y) - 2.0f * c;
+        const float dyy = L(x, y - 1) + L(x, y + 1) - 2.0f * c;
+        return std::abs(dxx) < 0.05f * c && std::abs(dyy) < 0.05f * c;
+    };
+    const double refMean = meanLuminance(ref.radiance);
+    double gpuSum = 0.0, refSum = 0.0;
     int lit = 0, close = 0;
-    for (size_t i = 0; i < gpu.pixelCount(); ++i) {
-        const float r = luminance(ref.radiance.data()[i]);
-        if (r < 0.02f * static_cast<float>(refMean)) continue;
-        ++lit;
-        if (std::abs(luminance(gpu.data()[i]) - r) <= 0.05f * r) ++close;
-    }
-    ASSERT_GT(lit, kSize * kSize / 4);
-    EXPECT_GE(static_cast<double>(close) / lit, 0.90) << close << " of " << lit << " lit pixels within 5 %";
+    for (int y = 1; y < kSize - 1; ++y)
+        for (int x = 1; x < kSize - 1; ++x) {
+            const float r = luminance(ref.radiance.at(x, y));
+            if (r < 0.02f * static_cast<float>(refMean) || !interior(x, y)) continue;
+            const float g = luminance(gpu.at(x, y));
+            gpuSum += g;
+            refSum += r;
+            ++lit;
+            if (std::abs(g - r) <= 0.03f * r) ++close;
+        }
+    ASSERT_GT(lit, kSize * kSize / 8);
+    // 1. Interior means agree within three reference standard errors (the reference's only noise
+    //    here is pixel-footprint jitter) plus 0.5 % for shadow-map resolution at penumbra-free edges.
+    const double tolerance = 3.0 * ref.noise.imageRelativeError + 0.005;
+    EXPECT_NEAR(gpuSum / refSum, 1.0, tolerance) << "gpu " << gpuSum / lit << " reference " << refSum / lit;
+    // 2. 95 % of interior lit pixels agree within 3 % (the rest: shadow-map texels vs exact rays).
+    EXPECT_GE(static_cast<double>(close) / lit, 0.95) << close << " of " << lit << " interior pixels within 3 %";
 }
 }  // namespace
 
