@@ -159,7 +159,10 @@ TEST_F(IirGpuTest, FlickerOfIncrementalAndComparisonModes) {
     }
     std::printf("flicker (cornell-box-dynamic, 32^2, 48 VPLs, 12 frames): incremental %.5f, comparison %.5f\n",
                 flicker[0], flicker[1]);
-    EXPECT_TRUE(std::isfinite(flicker[0]) && std::isfinite(flicker[1]));
+    ASSERT_TRUE(std::isfinite(flicker[0]) && std::isfinite(flicker[1]));
+    // The paper's claim (§6: "less flickering artifacts than the comparison method using the same
+    // number of VPLs"). Both runs are deterministic; measured 0.23 against 0.41, so the margin is wide.
+    EXPECT_LT(flicker[0], flicker[1]);
 }
 
 TEST_F(IirGpuTest, RendersEveryBuiltinScene) {
