@@ -169,7 +169,8 @@ TEST_F(IirGpuTest, RendersEveryBuiltinScene) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         const std::string& name = info.name;
         const Scene scene = load(name);
-        IirRun run = makeRun(scene, 16, {{"maxLights", "16"}});
+        // 18 is not a multiple of the 4x4 tiling: the atlas has empty pixels at the tile ends.
+        IirRun run = makeRun(scene, 18, {{"maxLights", "16"}});
         ASSERT_TRUE(run.pipeline) << name;
         run.pipeline->renderFrame(0);
         run.pipeline->renderFrame(1);
