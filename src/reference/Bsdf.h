@@ -23,6 +23,7 @@ public:
     // `textured` is baseColor already multiplied by the base-colour texture. `diffuseOnly` keeps
     // the Lambert lobe alone (the --diffuse-only scope for vertices after the first).
     Bsdf(const Material& material, glm::vec3 textured, bool diffuseOnly) noexcept;
+    Bsdf() noexcept : m_diffuseAlbedo(0.0f) {}  // black
 
     bool isLambertian() const noexcept { return !m_hasSpecular; }
     glm::vec3 eval(glm::vec3 wo, glm::vec3 wi) const noexcept;

@@ -1,6 +1,5 @@
 #include "reference/CameraRays.h"
 
-#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 namespace bounce {
@@ -12,18 +11,6 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
     // conditioned in float.
     const glm::dmat4 clipFromWorld = glm::dmat4(camera.clipFromView(aspect)) * glm::dmat4(camera.viewFromWorld());
     m_worldFromClip = glm::mat4(glm::inverse(clipFromWorld));
-}
-
-CameraRay CameraRays::generate(float px, float py) const noexcept {
-    const float ndcX = 2.0f * px * m_invWidth - 1.0f;
-    const float ndcY = 1.0f - 2.0f * py * m_invHeight;
-    const glm::vec4 nearH = m_worldFromClip * glm::vec4(ndcX, ndcY, -1.0f, 1.0f);
-    const glm::vec4 farH = m_worldFromClip * glm::vec4(ndcX, ndcY, 1.0f, 1.0f);
-    const glm::vec3 nearP = glm::vec3(nearH) / nearH.w;
-    const glm::vec3 farP = glm::vec3(farH) / farH.w;
-    const glm::vec3 span = farP - nearP;
-    const float length = glm::length(span);
-    return {nearP, span / length, length};
 }
 
 }  // namespace bounce

@@ -5,6 +5,7 @@
 // Image; aspect = width / height.
 #include "scene/Scene.h"
 
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
 namespace bounce {
@@ -28,5 +29,17 @@ private:
     float m_invWidth;
     float m_invHeight;
 };
+
+inline CameraRay CameraRays::generate(float px, float py) const noexcept {
+    const float ndcX = 2.0f * px * m_invWidth - 1.0f;
+    const float ndcY = 1.0f - 2.0f * py * m_invHeight;
+    const glm::vec4 nearH = m_worldFromClip * glm::vec4(ndcX, ndcY, -1.0f, 1.0f);
+    const glm::vec4 farH = m_worldFromClip * glm::vec4(ndcX, ndcY, 1.0f, 1.0f);
+    const glm::vec3 nearP = glm::vec3(nearH) / nearH.w;
+    const glm::vec3 farP = glm::vec3(farH) / farH.w;
+    const glm::vec3 span = farP - nearP;
+    const float length = glm::length(span);
+    return {nearP, span / length, length};
+}
 
 }  // namespace bounce

@@ -29,6 +29,21 @@ void computeFaceData(SceneGeometry& g) {
     }
 }
 
+// True when every vertex normal equals the face normal of each triangle using it (within float
+// rounding of a normalised vector), so interpolation would only reproduce the face normal.
+bool isFlat(const SceneGeometry& g) {
+    constexpr float kSameDirection = 0.99999f;  // cos of 0.26 degrees
+    for (size_t i = 0; i < g.triangles.size(); ++i) {
+        if (!(g.areas[i] > 0.0f)) continue;
+        const glm::uvec3 t = g.triangles[i];
+        const glm::vec3 n = g.faceNormals[i];
+        if (glm::dot(g.normals[t.x], n) < kSameDirection || glm::dot(g.normals[t.y], n) < kSameDirection ||
+            glm::dot(g.normals[t.z], n) < kSameDirection)
+            return false;
+    }
+    return true;
+}
+
 Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, unsigned id) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geom) return makeError("embree: cannot create a triangle geometry");
@@ -92,10 +107,11 @@ Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOp
                 g.normals.push_back(len > 0.0f ? w / len : glm::vec3(0.0f));
             }
         }
-        if (hasUvs) g.uvs = mesh.uvs;
+        if (hasUvs && scene.materials[object.material].baseColorTexture >= 0) g.uvs = mesh.uvs;
         g.triangles.resize(mesh.triangleCount());
         std::memcpy(g.triangles.data(), mesh.indices.data(), g.triangles.size() * sizeof(glm::uvec3));
         computeFaceData(g);
+        if (hasNormals && isFlat(g)) g.normals.clear();
         out.m_geometries.push_back(std::move(g));
     }
 
@@ -126,28 +142,6 @@ Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOp
     const RTCError error = rtcGetDeviceError(out.m_device.get());
     if (error != RTC_ERROR_NONE) return makeError("embree: building the BVH failed (error {})", static_cast<int>(error));
     return out;
-}
-
-SurfacePoint EmbreeScene::surface(uint32_t geomId, uint32_t primId, float u, float v) const noexcept {
-    const SceneGeometry& g = m_geometries[geomId];
-    const glm::uvec3 t = g.triangles[primId];
-    const float w = 1.0f - u - v;
-    SurfacePoint s;
-    s.position = w * g.positions[t.x] + u * g.positions[t.y] + v * g.positions[t.z];
-    s.geometricNormal = g.faceNormals[primId];
-    s.shadingNormal = s.geometricNormal;
-    if (!g.normals.empty()) {
-        const glm::vec3 n = w * g.normals[t.x] + u * g.normals[t.y] + v * g.normals[t.z];
-        const float len = glm::length(n);
-        if (len > 0.0f) {
-            s.shadingNormal = n / len;
-            // A vertex normal more than 90 degrees from its face belongs to the other side (a
-            // mirroring transform, or a normal authored for the back face): keep it consistent.
-            if (glm::dot(s.shadingNormal, s.geometricNormal) < 0.0f) s.shadingNormal = -s.shadingNormal;
-        }
-    }
-    s.uv = g.uvs.empty() ? glm::vec2(0.0f) : w * g.uvs[t.x] + u * g.uvs[t.y] + v * g.uvs[t.z];
-    return s;
 }
 
 }  // namespace bounce

@@ -9,6 +9,7 @@
 #include "scene/Scene.h"
 
 #include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -36,7 +37,9 @@ struct SceneGeometry {
     uint32_t materialIndex = kNoIndex;
     uint32_t lightIndex = kNoIndex;  // Scene::lights, for Kind::AreaLight
     bool twoSided = false;
-    // World space at the build time. normals is empty when the mesh has none (faceNormals are used).
+    // World space at the build time. normals is empty when the mesh has none or when every vertex
+    // normal equals its face normal (flat shading, e.g. boxes): faceNormals are used then. uvs is
+    // empty when the mesh has none or its material has no texture (nothing reads them).
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;
@@ -63,8 +66,28 @@ public:
     const SceneGeometry& geometry(uint32_t geomId) const noexcept { return m_geometries[geomId]; }
     float time() const noexcept { return m_time; }
 
-    // (u, v) are Embree's barycentrics: p = (1-u-v) p0 + u p1 + v p2.
-    SurfacePoint surface(uint32_t geomId, uint32_t primId, float u, float v) const noexcept;
+    // (u, v) are Embree's barycentrics: p = (1-u-v) p0 + u p1 + v p2. Inline: it runs once per ray.
+    SurfacePoint surface(uint32_t geomId, uint32_t primId, float u, float v) const noexcept {
+        const SceneGeometry& g = m_geometries[geomId];
+        const glm::uvec3 t = g.triangles[primId];
+        const float w = 1.0f - u - v;
+        SurfacePoint s;
+        s.position = w * g.positions[t.x] + u * g.positions[t.y] + v * g.positions[t.z];
+        s.geometricNormal = g.faceNormals[primId];
+        s.shadingNormal = s.geometricNormal;
+        if (!g.normals.empty()) {
+            const glm::vec3 n = w * g.normals[t.x] + u * g.normals[t.y] + v * g.normals[t.z];
+            const float len = glm::length(n);
+            if (len > 0.0f) {
+                s.shadingNormal = n / len;
+                // A vertex normal more than 90 degrees from its face belongs to the other side (a
+                // mirroring transform, or a normal authored for the back face): keep it consistent.
+                if (glm::dot(s.shadingNormal, s.geometricNormal) < 0.0f) s.shadingNormal = -s.shadingNormal;
+            }
+        }
+        s.uv = g.uvs.empty() ? glm::vec2(0.0f) : w * g.uvs[t.x] + u * g.uvs[t.y] + v * g.uvs[t.z];
+        return s;
+    }
 
 private:
     struct DeviceDeleter {

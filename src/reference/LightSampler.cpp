@@ -2,9 +2,6 @@
 
 #include "core/Image.h"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace bounce {
 
@@ -90,94 +87,35 @@ LightSampler::LightSampler(const Scene& scene, const EmbreeScene& embree) {
 
     double total = 0.0;
     for (float w : m_weights) total += w;
-    m_cdf.resize(m_weights.size());
-    m_pmf.resize(m_weights.size());
-    double running = 0.0;
-    for (size_t i = 0; i < m_weights.size(); ++i) {
-        running += m_weights[i];
-        m_pmf[i] = static_cast<float>(m_weights[i] / total);
-        m_cdf[i] = static_cast<float>(running / total);
-    }
-    if (!m_cdf.empty()) m_cdf.back() = 1.0f;
-    // Drop the light sources that can never be chosen so that empty() means "no light at all".
-    if (total <= 0.0) {
+    if (!(total > 0.0)) {
+        // Nothing can be chosen: empty() then means "no light at all".
         m_entries.clear();
-        m_cdf.clear();
-        m_pmf.clear();
+        return;
     }
-}
+    const size_t n = m_weights.size();
+    for (size_t i = 0; i < n; ++i) m_entries[i].pmf = static_cast<float>(m_weights[i] / total);
 
-bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept {
-    const size_t index = std::min(static_cast<size_t>(std::upper_bound(m_cdf.begin(), m_cdf.end(), uSelect) - m_cdf.begin()),
-                                  m_cdf.size() - 1);
-    const Entry& e = m_entries[index];
-    const float pmf = m_pmf[index];
-    if (!(pmf > 0.0f)) return false;
-    switch (e.kind) {
-        case Kind::Point:
-        case Kind::Spot: {
-            const glm::vec3 toLight = e.position - p;
-            const float d2 = glm::dot(toLight, toLight);
-            if (!(d2 > 0.0f)) return false;
-            const float d = std::sqrt(d2);
-            out.wi = toLight / d;
-            out.distance = d;
-            out.lightPoint = e.position;
-            out.pdf = 0.0f;
-            glm::vec3 intensity = e.emitted;
-            if (e.kind == Kind::Spot) {
-                const float cosAlpha = -glm::dot(out.wi, e.normal);
-                if (!(cosAlpha > e.cosCutoff) || cosAlpha <= 0.0f) return false;
-                intensity *= std::pow(cosAlpha, e.exponent);
-            }
-            out.contribution = intensity / (d2 * pmf);
-            return true;
-        }
-        case Kind::Directional:
-            out.wi = -e.normal;
-            out.distance = std::numeric_limits<float>::infinity();
-            out.lightPoint = p;
-            out.pdf = 0.0f;
-            out.contribution = e.emitted / pmf;
-            return true;
-        case Kind::Area:
-        case Kind::Triangle: {
-            glm::vec3 y;
-            if (e.kind == Kind::Area) {
-                y = e.position + u1 * e.edge1 + u2 * e.edge2;
-            } else {
-                const glm::vec2 b = uniformTriangle(u1, u2);
-                y = e.position + b.x * e.edge1 + b.y * e.edge2;
-            }
-            const glm::vec3 toLight = y - p;
-            const float d2 = glm::dot(toLight, toLight);
-            if (!(d2 > 0.0f)) return false;
-            const float d = std::sqrt(d2);
-            out.wi = toLight / d;
-            float cosLight = -glm::dot(out.wi, e.normal);
-            const bool front = cosLight > 0.0f;
-            if (!front) {
-                if (!e.twoSided) return false;
-                cosLight = -cosLight;
-            }
-            if (!(cosLight > 0.0f)) return false;
-            out.distance = d;
-            out.lightPoint = offsetRayOrigin(y, front ? e.normal : -e.normal);
-            out.pdf = pmf * d2 / (e.area * cosLight);
-            out.contribution = e.emitted / out.pdf;
-            return true;
+    // Vose's alias method: scaled weights n * pmf below 1 are topped up by one entry above 1.
+    m_aliasTable.resize(n);
+    std::vector<double> scaled(n);
+    std::vector<uint32_t> small, large;
+    for (size_t i = 0; i < n; ++i) {
+        m_aliasTable[i].alias = static_cast<uint32_t>(i);
+        scaled[i] = static_cast<double>(m_weights[i]) / total * static_cast<double>(n);
+        (scaled[i] < 1.0 ? small : large).push_back(static_cast<uint32_t>(i));
+    }
+    while (!small.empty() && !large.empty()) {
+        const uint32_t s = small.back(), l = large.back();
+        small.pop_back();
+        m_aliasTable[s].threshold = static_cast<float>(scaled[s]);
+        m_aliasTable[s].alias = l;
+        scaled[l] -= 1.0 - scaled[s];
+        if (scaled[l] < 1.0) {
+            large.pop_back();
+            small.push_back(l);
         }
     }
-    return false;
-}
-
-float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept {
-    uint32_t index = m_entryOfGeometry[geomId];
-    if (index == kNoIndex || m_pmf.empty()) return 0.0f;
-    if (m_entries[index].kind == Kind::Triangle) index += primId;
-    const Entry& e = m_entries[index];
-    if (!(cosLight > 0.0f) || !(e.area > 0.0f)) return 0.0f;
-    return m_pmf[index] * distance * distance / (e.area * cosLight);
+    // Leftovers are 1 up to rounding: they keep themselves (threshold 1).
 }
 
 }  // namespace bounce

@@ -2,7 +2,7 @@
 // Next-event estimation for the reference path tracer: one list of every light source in the scene
 // (point, spot and directional lights, rectangular area lights and each triangle of every object
 // whose material emits), from which one is picked per shading point with probability proportional
-// to its emitted flux (luminance). Triangles of one emissive object therefore get area-weighted
+// to its emitted flux (luminance), in constant time through an alias table. Triangles of one emissive object therefore get area-weighted
 // probabilities; a point on a rectangle or triangle is then chosen uniformly by area.
 //
 // Directional lights have no finite flux: they are weighted by the flux that crosses the disc of
@@ -11,6 +11,9 @@
 #include "reference/Sampling.h"
 #include "scene/Scene.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace bounce {
@@ -51,17 +54,97 @@ private:
         float area = 0.0f;
         float cosCutoff = 0.0f;  // spot
         float exponent = 1.0f;   // spot
+        float pmf = 0.0f;        // probability of being chosen
+    };
+    struct AliasSlot {
+        float threshold = 1.0f;  // keep the slot's own entry below this, else take `alias`
+        uint32_t alias = 0;
     };
 
     void add(const Entry& entry, float weight);
 
     std::vector<Entry> m_entries;
-    std::vector<float> m_weights;  // unnormalised during construction
-    std::vector<float> m_cdf;      // inclusive, last = 1
-    std::vector<float> m_pmf;
+    std::vector<float> m_weights;  // unnormalised flux, for construction
+    // Walker's alias table (built with Vose's method): O(1) choice without a branchy search.
+    std::vector<AliasSlot> m_aliasTable;
     // Per Embree geometry: the first entry of an emissive object's triangles (entry = base + primId),
     // the entry of an area light, or kNoIndex.
     std::vector<uint32_t> m_entryOfGeometry;
 };
+
+inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept {
+    const float scaled = uSelect * static_cast<float>(m_entries.size());
+    const size_t slot = std::min(static_cast<size_t>(scaled), m_entries.size() - 1);
+    const float u = scaled - static_cast<float>(slot);
+    const AliasSlot& a = m_aliasTable[slot];
+    const Entry& e = m_entries[u < a.threshold ? slot : a.alias];
+    const float pmf = e.pmf;
+    if (!(pmf > 0.0f)) return false;
+    switch (e.kind) {
+        case Kind::Point:
+        case Kind::Spot: {
+            const glm::vec3 toLight = e.position - p;
+            const float d2 = glm::dot(toLight, toLight);
+            if (!(d2 > 0.0f)) return false;
+            const float d = std::sqrt(d2);
+            out.wi = toLight * (1.0f / d);
+            out.distance = d;
+            out.lightPoint = e.position;
+            out.pdf = 0.0f;
+            glm::vec3 intensity = e.emitted;
+            if (e.kind == Kind::Spot) {
+                const float cosAlpha = -glm::dot(out.wi, e.normal);
+                if (!(cosAlpha > e.cosCutoff) || cosAlpha <= 0.0f) return false;
+                intensity *= std::pow(cosAlpha, e.exponent);
+            }
+            out.contribution = intensity * (1.0f / (d2 * pmf));
+            return true;
+        }
+        case Kind::Directional:
+            out.wi = -e.normal;
+            out.distance = std::numeric_limits<float>::infinity();
+            out.lightPoint = p;
+            out.pdf = 0.0f;
+            out.contribution = e.emitted * (1.0f / pmf);
+            return true;
+        case Kind::Area:
+        case Kind::Triangle: {
+            glm::vec3 y;
+            if (e.kind == Kind::Area) {
+                y = e.position + u1 * e.edge1 + u2 * e.edge2;
+            } else {
+                const glm::vec2 b = uniformTriangle(u1, u2);
+                y = e.position + b.x * e.edge1 + b.y * e.edge2;
+            }
+            const glm::vec3 toLight = y - p;
+            const float d2 = glm::dot(toLight, toLight);
+            if (!(d2 > 0.0f)) return false;
+            const float d = std::sqrt(d2);
+            out.wi = toLight * (1.0f / d);
+            float cosLight = -glm::dot(out.wi, e.normal);
+            const bool front = cosLight > 0.0f;
+            if (!front) {
+                if (!e.twoSided) return false;
+                cosLight = -cosLight;
+            }
+            if (!(cosLight > 0.0f)) return false;
+            out.distance = d;
+            out.lightPoint = offsetRayOrigin(y, front ? e.normal : -e.normal);
+            out.pdf = pmf * d2 / (e.area * cosLight);
+            out.contribution = e.emitted * (1.0f / out.pdf);
+            return true;
+        }
+    }
+    return false;
+}
+
+inline float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept {
+    uint32_t index = m_entryOfGeometry[geomId];
+    if (index == kNoIndex || m_entries.empty()) return 0.0f;
+    if (m_entries[index].kind == Kind::Triangle) index += primId;
+    const Entry& e = m_entries[index];
+    if (!(cosLight > 0.0f) || !(e.area > 0.0f)) return 0.0f;
+    return e.pmf * distance * distance / (e.area * cosLight);
+}
 
 }  // namespace bounce

@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -43,9 +44,15 @@ constexpr int kMaxCulledCrossings = 64;
 // 1024 tiles for a 512^2 image, plenty to balance two to a few dozen threads.
 constexpr int kTileSize = 16;
 
-// Each pass renders at least this many paths, so that small test images (8 x 8 at 4096 spp) are not
-// dominated by per-pass scheduling; a 512^2 image still advances one sample per pixel per pass.
-constexpr uint64_t kMinPathsPerPass = 65536;
+// Each pass renders at least this many paths: enough that per-pass costs (scheduling, and fetching
+// every pixel's sums from memory) vanish, few enough that a 512^2 image reports progress and checks
+// the time limit every 4 samples per pixel (about half a second).
+constexpr uint64_t kMinPathsPerPass = 1u << 20;
+
+// Camera rays go to Embree as packets of 4 x 4 pixels (rtcIntersect16): neighbouring primary rays
+// traverse the same BVH nodes, which makes them about twice as cheap as single rays.
+constexpr int kPacketSide = 4;
+constexpr int kPacketSize = kPacketSide * kPacketSide;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -94,12 +101,12 @@ struct PathTracer::Counters {
     uint64_t invalidSamples = 0;
 };
 
-// Per-pixel sums over samples, in double so that 10^5 samples add up without losing the small ones.
-struct PathTracer::Accumulator {
-    int width = 0;
-    std::vector<glm::dvec3> radiance;
-    std::vector<double> lum;
-    std::vector<double> lum2;
+// One pixel's sums over samples, in double so that 10^5 samples add up without losing the small
+// ones; together in one struct so that a pixel's sums share a cache line.
+struct PathTracer::PixelSums {
+    glm::dvec3 radiance{0.0};
+    double lum = 0.0;
+    double lum2 = 0.0;
 };
 
 Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSettings& settings) {
@@ -149,7 +156,8 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
       m_embree(std::move(embree)),
       m_lights(scene, m_embree),
       m_camera(scene.camera.at(m_time), settings.width, settings.height),
-      m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections : settings.bounces + 1) {
+      m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
+                                                                          : settings.bounces + 1) {
     m_shading.resize(m_embree.geometries().size());
     for (size_t i = 0; i < m_shading.size(); ++i) {
         const SceneGeometry& g = m_embree.geometries()[i];
@@ -158,17 +166,20 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
             s.emitted = scene.lights[g.lightIndex].radiance;
             s.absorber = true;
         } else {
-            s.material = &scene.materials[g.materialIndex];
-            if (s.material->baseColorTexture >= 0)
-                s.texture = &scene.textures[static_cast<size_t>(s.material->baseColorTexture)].image;
-            s.emitted = s.material->emission;
-            s.twoSided = s.material->twoSided;
+            const Material& m = scene.materials[g.materialIndex];
+            s.material = &m;
+            if (m.baseColorTexture >= 0) s.texture = &scene.textures[static_cast<size_t>(m.baseColorTexture)].image;
+            s.emitted = m.emission;
+            s.twoSided = m.twoSided;
+            s.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
+            s.lambertian = m.specularF0 == 0.0f && m.metallic == 0.0f;
         }
         s.emissive = maxComponent(s.emitted) > 0.0f;
     }
 }
 
-glm::vec3 PathTracer::tracePath(Rng& rng, CameraRay cameraRay, Counters& counters) const {
+glm::vec3 PathTracer::tracePath(Rng& rng, const CameraRay& cameraRay, const RTCHit& firstHit, float firstT,
+                                Counters& counters) const {
     RTCScene scene = m_embree.handle();
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -177,36 +188,43 @@ glm::vec3 PathTracer::tracePath(Rng& rng, CameraRay cameraRay, Counters& counter
 
     glm::vec3 radiance(0.0f);
     glm::vec3 throughput(1.0f);
-    int reflections = 0;     // scattering events so far on this path
-    float bsdfPdf = 0.0f;    // solid-angle pdf of the BSDF sample that chose the current ray
+    int reflections = 0;   // scattering events so far on this path
+    float bsdfPdf = 0.0f;  // solid-angle pdf of the BSDF sample that chose the current ray
     int culledCrossings = 0;
-    glm::vec3 origin = cameraRay.origin, direction = cameraRay.direction;
+    glm::vec3 direction = cameraRay.direction;
     float tMax = cameraRay.tMax;
+    uint32_t geomId = firstHit.geomID, primId = firstHit.primID;
+    float hitU = firstHit.u, hitV = firstHit.v, hitT = firstT;
 
-    for (;;) {
-        RTCRayHit rh = makeRayHit(origin, direction, tMax);
+    const auto intersect = [&](glm::vec3 from) {
+        RTCRayHit rh = makeRayHit(from, direction, tMax);
         rtcIntersect1(scene, &context, &rh);
         ++counters.rays;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+        geomId = rh.hit.geomID;
+        primId = rh.hit.primID;
+        hitU = rh.hit.u;
+        hitV = rh.hit.v;
+        hitT = rh.ray.tfar;
+    };
 
-        const uint32_t geomId = rh.hit.geomID, primId = rh.hit.primID;
+    while (geomId != RTC_INVALID_GEOMETRY_ID) {
         const Shading& sh = m_shading[geomId];
-        const SurfacePoint sp = m_embree.surface(geomId, primId, rh.hit.u, rh.hit.v);
+        const SurfacePoint sp = m_embree.surface(geomId, primId, hitU, hitV);
         const float cosIn = glm::dot(direction, sp.geometricNormal);
         const bool front = cosIn < 0.0f;
 
         if (!front && !sh.twoSided && reflections == 0) {
             // The rasteriser culls back faces of one-sided surfaces: the camera sees through them.
             if (++culledCrossings > kMaxCulledCrossings) break;
-            origin = offsetRayOrigin(sp.position, sp.geometricNormal);
-            tMax -= rh.ray.tfar;
+            tMax -= hitT;
+            intersect(offsetRayOrigin(sp.position, sp.geometricNormal));
             continue;
         }
 
         if (sh.emissive && (front || sh.twoSided) && (!indirectOnly || reflections >= 2)) {
             float weight = 1.0f;
             if (reflections > 0) {
-                const float lightPdf = m_lights.pdfEmitterHit(geomId, primId, rh.ray.tfar, std::abs(cosIn));
+                const float lightPdf = m_lights.pdfEmitterHit(geomId, primId, hitT, std::abs(cosIn));
                 weight = powerHeuristic(bsdfPdf, lightPdf);
             }
             radiance += throughput * sh.emitted * weight;
@@ -220,11 +238,14 @@ glm::vec3 PathTracer::tracePath(Rng& rng, CameraRay cameraRay, Counters& counter
         // An interpolated normal can turn away from the viewer at silhouettes; fall back to the face.
         if (glm::dot(ns, direction) >= 0.0f) ns = ng;
         const Frame frame(ns);
-        const glm::vec3 wo = frame.toLocal(-direction);
-        glm::vec3 baseColor = sh.material->baseColor;
-        if (sh.texture) baseColor *= lookupBilinearRepeat(*sh.texture, sp.uv);
-        const Bsdf bsdf(*sh.material, baseColor, diffuseOnly && vertex >= 2);
+        const glm::vec3 texel = sh.texture ? lookupBilinearRepeat(*sh.texture, sp.uv) : glm::vec3(1.0f);
         const glm::vec3 position = offsetRayOrigin(sp.position, ng);
+        // Pure Lambert (the built-in scenes, and every vertex after the first under --diffuse-only)
+        // takes a short path without the general BRDF.
+        const bool lambert = sh.lambertian || (diffuseOnly && vertex >= 2);
+        const glm::vec3 albedo = sh.diffuseAlbedo * texel;
+        const glm::vec3 wo = frame.toLocal(-direction);
+        const Bsdf bsdf = lambert ? Bsdf() : Bsdf(*sh.material, sh.material->baseColor * texel, false);
 
         // Next-event estimation: one light source, one shadow ray. Under --indirect-only the first
         // reflection's direct light is not wanted, so no ray is spent on it.
@@ -232,8 +253,19 @@ glm::vec3 PathTracer::tracePath(Rng& rng, CameraRay cameraRay, Counters& counter
         if (!indirectOnly || vertex >= 2) {
             LightSample ls;
             if (m_lights.sample(sp.position, uSelect, uLight1, uLight2, ls) && glm::dot(ls.wi, ng) > 0.0f) {
-                const glm::vec3 wi = frame.toLocal(ls.wi);
-                const glm::vec3 f = bsdf.eval(wo, wi);
+                const float cosS = glm::dot(ls.wi, ns);
+                glm::vec3 f(0.0f);
+                float pdf = 0.0f;
+                if (lambert) {
+                    if (cosS > 0.0f) {
+                        f = albedo * kInvPi;
+                        pdf = cosS * kInvPi;
+                    }
+                } else {
+                    const glm::vec3 wi = frame.toLocal(ls.wi);
+                    f = bsdf.eval(wo, wi);
+                    if (maxComponent(f) > 0.0f) pdf = bsdf.pdf(wo, wi);
+                }
                 if (maxComponent(f) > 0.0f) {
                     const bool infinite = !std::isfinite(ls.distance);
                     RTCRay shadow = infinite ? makeShadowRay(position, ls.wi, std::numeric_limits<float>::infinity())
@@ -242,59 +274,112 @@ glm::vec3 PathTracer::tracePath(Rng& rng, CameraRay cameraRay, Counters& counter
                     ++counters.rays;
                     ++counters.shadowRays;
                     if (shadow.tfar >= 0.0f) {
-                        const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
-                        radiance += throughput * f * (wi.z * weight) * ls.contribution;
+                        const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, pdf) : 1.0f;
+                        radiance += throughput * f * (cosS * weight) * ls.contribution;
                     }
                 }
             }
         }
 
         const float uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
-        Bsdf::Sample bs;
-        if (!bsdf.sample(wo, uLobe, u1, u2, bs)) break;
-        const glm::vec3 wi = frame.toWorld(bs.wi);
+        glm::vec3 wi;
+        if (lambert) {
+            const glm::vec3 local = cosineHemisphere(u1, u2);
+            if (!(local.z > 0.0f)) break;
+            wi = frame.toWorld(local);
+            throughput *= albedo;  // (albedo / pi) cos / (cos / pi)
+            bsdfPdf = local.z * kInvPi;
+        } else {
+            Bsdf::Sample bs;
+            if (!bsdf.sample(wo, uLobe, u1, u2, bs)) break;
+            wi = frame.toWorld(bs.wi);
+            throughput *= bs.weight;
+            bsdfPdf = bs.pdf;
+        }
         // Directions below the geometric surface would leak through it.
         if (glm::dot(wi, ng) <= 0.0f) break;
-        throughput *= bs.weight;
-        bsdfPdf = bs.pdf;
         reflections = vertex;
         if (reflections >= kRouletteStartReflections) {
             const float survive = std::min(1.0f, maxComponent(throughput));
             if (!(rng.next() < survive)) break;
             throughput /= survive;
         }
-        origin = position;
         direction = wi;
         tMax = std::numeric_limits<float>::infinity();
+        intersect(position);
     }
     return radiance;
 }
 
-void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, Accumulator& acc,
+void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
                             Counters& counters) const {
-    const int width = m_settings.width;
-    for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-            const size_t pixel = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-            glm::dvec3 sum = acc.radiance[pixel];
-            double lum = acc.lum[pixel], lum2 = acc.lum2[pixel];
-            for (uint32_t s = s0; s < s1; ++s) {
-                Rng rng(m_settings.seed, pixel, s);
-                const float jx = rng.next(), jy = rng.next();
-                const CameraRay ray = m_camera.generate(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
-                glm::vec3 L = tracePath(rng, ray, counters);
-                if (!finite(L)) {
-                    ++counters.invalidSamples;
-                    L = glm::vec3(0.0f);
-                }
-                const double y1v = luminance(L);
-                sum += glm::dvec3(L);
-                lum += y1v;
-                lum2 += y1v * y1v;
+    const auto width = static_cast<size_t>(m_settings.width);
+    RTCIntersectContext coherent;
+    rtcInitIntersectContext(&coherent);
+    coherent.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacketSize];  // Embree requires 64-byte alignment of the mask
+    alignas(64) RTCRayHit16 packet;
+    std::array<Rng, kPacketSize> rngs;
+    std::array<CameraRay, kPacketSize> rays;
+    std::array<size_t, kPacketSize> pixels;
+
+    for (int by = y0; by < y1; by += kPacketSide) {
+        for (int bx = x0; bx < x1; bx += kPacketSide) {
+            int lanes = 0;
+            for (int lane = 0; lane < kPacketSize; ++lane) {
+                const int x = bx + lane % kPacketSide, y = by + lane / kPacketSide;
+                const bool inside = x < x1 && y < y1;
+                valid[lane] = inside ? -1 : 0;
+                pixels[lane] = inside ? static_cast<size_t>(y) * width + static_cast<size_t>(x) : 0;
+                lanes += inside ? 1 : 0;
             }
-            acc.radiance[pixel] = sum;
-            acc.lum[pixel] = lum;
-            acc.lum2[pixel] = lum2;
+            for (uint32_t s = s0; s < s1; ++s) {
+                for (int lane = 0; lane < kPacketSize; ++lane) {
+                    if (!valid[lane]) continue;
+                    const size_t pixel = pixels[lane];
+                    rngs[lane] = Rng(m_settings.seed, pixel, s);
+                    const float jx = rngs[lane].next(), jy = rngs[lane].next();
+                    const int x = bx + lane % kPacketSide, y = by + lane / kPacketSide;
+                    const CameraRay r = m_camera.generate(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
+                    rays[lane] = r;
+                    packet.ray.org_x[lane] = r.origin.x;
+                    packet.ray.org_y[lane] = r.origin.y;
+                    packet.ray.org_z[lane] = r.origin.z;
+                    packet.ray.dir_x[lane] = r.direction.x;
+                    packet.ray.dir_y[lane] = r.direction.y;
+                    packet.ray.dir_z[lane] = r.direction.z;
+                    packet.ray.tnear[lane] = 0.0f;
+                    packet.ray.tfar[lane] = r.tMax;
+                    packet.ray.time[lane] = 0.0f;
+                    packet.ray.mask[lane] = 0xffffffffu;
+                    packet.ray.id[lane] = 0;
+                    packet.ray.flags[lane] = 0;
+                    packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+                    packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect16(valid, m_embree.handle(), &coherent, &packet);
+                counters.rays += static_cast<uint64_t>(lanes);
+                for (int lane = 0; lane < kPacketSize; ++lane) {
+                    if (!valid[lane]) continue;
+                    RTCHit hit;
+                    hit.geomID = packet.hit.geomID[lane];
+                    hit.primID = packet.hit.primID[lane];
+                    hit.u = packet.hit.u[lane];
+                    hit.v = packet.hit.v[lane];
+                    glm::vec3 L = tracePath(rngs[lane], rays[lane], hit, packet.ray.tfar[lane], counters);
+                    if (!finite(L)) {
+                        ++counters.invalidSamples;
+                        L = glm::vec3(0.0f);
+                    }
+                    // Samples reach each pixel in increasing s whatever the thread: the sums are
+                    // bit-identical for any thread count.
+                    PixelSums& p = sums[pixels[lane]];
+                    const double y = luminance(L);
+                    p.radiance += glm::dvec3(L);
+                    p.lum += y;
+                    p.lum2 += y * y;
+                }
+            }
         }
     }
 }
@@ -302,57 +387,70 @@ void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_
 PathTracerResult PathTracer::render(const ProgressCallback& progress) const {
     const int width = m_settings.width, height = m_settings.height;
     const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-    Accumulator acc;
-    acc.width = width;
-    acc.radiance.assign(pixels, glm::dvec3(0.0));
-    acc.lum.assign(pixels, 0.0);
-    acc.lum2.assign(pixels, 0.0);
+    std::vector<PixelSums> sums(pixels);
 
     const uint32_t target = m_settings.samplesPerPixel;
     const auto perPass = static_cast<uint32_t>(
         std::clamp<uint64_t>((kMinPathsPerPass + pixels - 1) / pixels, 1, target));
     const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
 
-    std::atomic<uint64_t> rays{0}, shadowRays{0}, invalid{0};
     tbb::task_arena arena(m_settings.threads > 0 ? m_settings.threads : tbb::task_arena::automatic);
     PathTracerResult result;
+    const bool limited = m_settings.timeLimitSeconds > 0.0;
     const Clock::time_point start = Clock::now();
+    const Clock::time_point deadline =
+        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_settings.timeLimitSeconds));
+    // With a time limit, a pass that cannot finish in time is abandoned and its partial sums
+    // replaced by this copy, so the image holds complete passes only.
+    std::vector<PixelSums> before;
     uint32_t done = 0;
-    double lastPassSeconds = 0.0;
     while (done < target) {
-        const double elapsed = secondsSince(start);
-        // Start another pass only if it is expected to end within the budget (the first always runs).
-        if (m_settings.timeLimitSeconds > 0.0 && done > 0 && elapsed + lastPassSeconds > m_settings.timeLimitSeconds) {
-            result.stoppedByTimeLimit = true;
-            break;
-        }
         const uint32_t s0 = done, s1 = std::min(target, done + perPass);
-        const Clock::time_point passStart = Clock::now();
+        // The first pass always completes, so there is an image however small the budget.
+        const bool cancellable = limited && done > 0;
+        if (cancellable) before = sums;
+        std::atomic<bool> cancelled{false};
+        std::atomic<uint64_t> rays{0}, shadowRays{0}, invalid{0};
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1),
                               [&](const tbb::blocked_range2d<int>& r) {
                                   Counters local;
                                   for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
-                                      for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx)
+                                      for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                                          if (cancellable && (cancelled.load(std::memory_order_relaxed) ||
+                                                              Clock::now() > deadline)) {
+                                              cancelled = true;
+                                              return;
+                                          }
                                           renderTile(tx * kTileSize, ty * kTileSize,
                                                      std::min(width, (tx + 1) * kTileSize),
-                                                     std::min(height, (ty + 1) * kTileSize), s0, s1, acc, local);
+                                                     std::min(height, (ty + 1) * kTileSize), s0, s1, sums.data(),
+                                                     local);
+                                      }
                                   rays += local.rays;
                                   shadowRays += local.shadowRays;
                                   invalid += local.invalidSamples;
                               });
         });
-        lastPassSeconds = secondsSince(passStart);
+        if (cancelled || (cancellable && Clock::now() > deadline)) {
+            sums.swap(before);
+            result.stoppedByTimeLimit = true;
+            break;
+        }
         done = s1;
+        result.rays += rays;
+        result.shadowRays += shadowRays;
+        result.invalidSamples += invalid;
         if (progress) progress(RenderProgress{done, target, secondsSince(start)});
+        if (limited && done < target && Clock::now() >= deadline) {
+            result.stoppedByTimeLimit = true;
+            break;
+        }
     }
     result.renderSeconds = secondsSince(start);
     result.buildSeconds = m_buildSeconds;
     result.samplesPerPixel = done;
     result.paths = static_cast<uint64_t>(pixels) * done;
-    result.rays = rays.load();
-    result.shadowRays = shadowRays.load();
-    result.invalidSamples = invalid.load();
     if (result.invalidSamples > 0)
         spdlog::warn("reference: {} non-finite samples were dropped", result.invalidSamples);
 
@@ -361,10 +459,11 @@ PathTracerResult PathTracer::render(const ProgressCallback& progress) const {
     double relSum = 0.0, varOfMeanSum = 0.0, meanSum = 0.0;
     uint64_t measured = 0;
     for (size_t i = 0; i < pixels; ++i) {
-        result.radiance.data()[i] = glm::vec3(acc.radiance[i] / n);
-        const double mean = acc.lum[i] / n;
+        const PixelSums& p = sums[i];
+        result.radiance.data()[i] = glm::vec3(p.radiance / n);
+        const double mean = p.lum / n;
         // Unbiased sample variance of the per-sample luminance; needs two samples.
-        const double variance = done > 1 ? std::max(0.0, (acc.lum2[i] - n * mean * mean) / (n - 1.0)) : 0.0;
+        const double variance = done > 1 ? std::max(0.0, (p.lum2 - n * mean * mean) / (n - 1.0)) : 0.0;
         const double varOfMean = variance / n;
         meanSum += mean;
         varOfMeanSum += varOfMean;

@@ -34,7 +34,9 @@ struct PathTracerSettings {
     bool indirectOnly = false;  // keep only light that reflected at least twice (full minus direct)
     bool diffuseOnly = false;   // BRDF = Lambert lobe alone at every vertex after the first
     uint64_t seed = 0;
-    double timeLimitSeconds = 0.0;  // 0: no limit; else stop after the last pass that fits
+    // 0: no limit. Otherwise the image holds the passes that completed within the limit: a pass
+    // still running at the deadline is abandoned (the first pass always completes).
+    double timeLimitSeconds = 0.0;
     int threads = 0;                // 0: every hardware thread
     uint32_t frame = 0;             // render the scene at time scene.timeOfFrame(frame)
 
@@ -63,9 +65,9 @@ struct PathTracerResult {
     uint32_t samplesPerPixel = 0;     // reached (less than asked when the time limit stopped it)
     bool stoppedByTimeLimit = false;
     double buildSeconds = 0.0;        // BVH and light list
-    double renderSeconds = 0.0;       // tracing only
+    double renderSeconds = 0.0;       // tracing only, including an abandoned pass
     uint64_t paths = 0;               // camera paths = pixels * samplesPerPixel
-    uint64_t rays = 0;                // every ray given to Embree: camera, continuation and shadow rays
+    uint64_t rays = 0;                // rays given to Embree for the kept passes: camera, continuation, shadow
     uint64_t shadowRays = 0;
     uint64_t invalidSamples = 0;      // non-finite samples dropped (0 unless there is a bug)
     NoiseEstimate noise;
@@ -90,18 +92,23 @@ public:
         const Material* material = nullptr;  // null for area lights
         const Image* texture = nullptr;      // base-colour texture, or null
         glm::vec3 emitted{0.0f};             // radiance of the front side (both sides if twoSided)
+        glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
         bool emissive = false;
         bool twoSided = false;
-        bool absorber = false;  // area-light rectangles: emit, never reflect
+        bool absorber = false;    // area-light rectangles: emit, never reflect
+        bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
     };
 
 private:
     struct Counters;
-    struct Accumulator;
+    struct PixelSums;
     PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree);
-    void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, Accumulator& acc,
+    void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
                     Counters& counters) const;
-    glm::vec3 tracePath(Rng& rng, CameraRay ray, Counters& counters) const;
+    // Continues a camera path whose first intersection (geomId, or RTC_INVALID_GEOMETRY_ID for a
+    // miss) the packet tracer already found.
+    glm::vec3 tracePath(Rng& rng, const CameraRay& ray, const RTCHit& firstHit, float firstT,
+                        Counters& counters) const;
 
     const Scene* m_scene;
     PathTracerSettings m_settings;

@@ -21,7 +21,7 @@ struct RayHit {
     glm::vec3 position{0.0f};      // world space
     glm::vec3 geometricNormal{0.0f};  // unit, the triangle's front side
     glm::vec3 shadingNormal{0.0f};    // unit, interpolated vertex normal on the front side
-    glm::vec2 uv{0.0f};
+    glm::vec2 uv{0.0f};            // interpolated; (0, 0) unless the material has a base-colour texture
     bool frontFacing = false;      // the ray arrived on the front side
     uint32_t objectIndex = 0;      // Scene::objects
     uint32_t triangleIndex = 0;    // triangle of the object's mesh (indices[3 * triangleIndex])

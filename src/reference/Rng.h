@@ -11,6 +11,7 @@ namespace bounce {
 
 class Rng {
 public:
+    Rng() noexcept = default;  // a placeholder, to be assigned before use
     Rng(uint64_t seed, uint64_t pixel, uint64_t sample) noexcept
         : m_key(mix((mix(mix(seed + kGolden) ^ pixel) + kGolden) ^ sample)) {}
 
@@ -37,7 +38,7 @@ public:
 
 private:
     static constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ull;  // 2^64 / golden ratio (SplitMix64 increment)
-    uint64_t m_key;
+    uint64_t m_key = 0;
     uint64_t m_counter = 0;
     uint32_t m_spare = 0;
     bool m_hasSpare = false;

@@ -31,26 +31,13 @@ struct Frame {
     glm::vec3 toWorld(glm::vec3 v) const noexcept { return v.x * t + v.y * b + v.z * n; }
 };
 
-// Uniform point on the unit disc, concentric mapping (Shirley and Chiu 1997): keeps strata compact.
-inline glm::vec2 concentricDisc(float u1, float u2) noexcept {
-    const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-    if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
-    float r, phi;
-    if (std::abs(a) > std::abs(b)) {
-        r = a;
-        phi = (kPi / 4.0f) * (b / a);
-    } else {
-        r = b;
-        phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
-    }
-    return {r * std::cos(phi), r * std::sin(phi)};
-}
-
-// Cosine-distributed direction in the local frame (z up); pdf = z / pi.
+// Cosine-distributed direction in the local frame (z up); pdf = z / pi. Polar mapping of the unit
+// disc (r = sqrt(u1), phi = 2 pi u2) lifted to the hemisphere (Malley's method): z = sqrt(1 - u1) is
+// never 0 because u1 < 1.
 inline glm::vec3 cosineHemisphere(float u1, float u2) noexcept {
-    const glm::vec2 d = concentricDisc(u1, u2);
-    const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
-    return {d.x, d.y, z};
+    const float r = std::sqrt(u1);
+    const float phi = 2.0f * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0f - u1)};
 }
 
 // Uniform barycentrics (b1, b2) on a triangle; the point is (1-b1-b2) p0 + b1 p1 + b2 p2.
