@@ -52,6 +52,7 @@ struct Measured {
     double shadowMapMs = 0.0;    // "iir/sm-rendering"
     double indirectMs = 0.0;     // "iir" (everything the technique does, CPU included)
     double managementMs = 0.0;   // VPL management on the CPU (counter vplManagementMs)
+    std::map<std::string, double> passMs;  // every timed pass (Table 1 and 2 rows), mean per frame
 };
 
 Measured measure(const Scene& scene, bool incremental, int maxLights, uint32_t frames = kFrames) {
@@ -69,6 +70,7 @@ Measured measure(const Scene& scene, bool incremental, int maxLights, uint32_t f
         m.frameMs += s.cpuMilliseconds / frames;
         m.managementMs += s.counters.at("vplManagementMs") / frames;
         for (const gl::PassTime& p : s.passes) {
+            m.passMs[p.name] += p.milliseconds / frames;
             if (p.name == "iir/sm-rendering") m.shadowMapMs += p.milliseconds / frames;
             if (p.name == "iir") m.indirectMs += p.milliseconds / frames;
         }
@@ -101,6 +103,12 @@ void compareModes(benchmark::State& state, const Scene& scene, int maxLights) {
     state.counters["frameSpeedup"] = inc.frameMs > 0.0 ? comp.frameMs / inc.frameMs : 0.0;
     state.counters["indirectSpeedup"] = inc.indirectMs > 0.0 ? comp.indirectMs / inc.indirectMs : 0.0;
     state.counters["triangles"] = static_cast<double>(scene.triangleCount());
+    // Table 1 and 2 rows of the incremental run: G-buffer, direct (shadow maps + shading), split,
+    // accumulation, combine, filter.
+    for (const char* name : {"gbuffer", "shadow-maps", "direct", "iir/split", "iir/accum", "iir/combine", "iir/filter"}) {
+        const auto it = inc.passMs.find(name);
+        if (it != inc.passMs.end()) state.counters[std::string("inc:") + name] = it->second;
+    }
 }
 
 // R1, R2: cornell-box-dynamic, 256 VPLs.
