@@ -174,8 +174,11 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
         VplDistributionParams params;
         params.maxLights = static_cast<uint32_t>(m_maxLights);
         if (m_incremental) {
-            params.recalcMax = static_cast<uint32_t>(std::min(m_recalcMax, m_maxLights));
-            params.recalcMin = static_cast<uint32_t>(std::min<int>(m_recalcMin, static_cast<int>(params.recalcMax)));
+            if (m_recalcMin > m_recalcMax || m_recalcMax > m_maxLights)
+                return makeError("technique 'iir': need recalcMin ({}) <= recalcMax ({}) <= maxLights ({})",
+                                 m_recalcMin, m_recalcMax, m_maxLights);
+            params.recalcMax = static_cast<uint32_t>(m_recalcMax);
+            params.recalcMin = static_cast<uint32_t>(m_recalcMin);
         } else {
             // The comparison method: every slot freed and refilled every frame.
             params.recalcMin = params.recalcMax = params.maxLights;
