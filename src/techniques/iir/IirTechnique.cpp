@@ -175,7 +175,7 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
         params.maxLights = static_cast<uint32_t>(m_maxLights);
         if (m_incremental) {
             if (m_recalcMin > m_recalcMax || m_recalcMax > m_maxLights)
-                return makeError("technique 'iir': need recalcMin ({}) <= recalcMax ({}) <= maxLights ({})",
+                return makeError("need recalcMin ({}) <= recalcMax ({}) <= maxLights ({})",
                                  m_recalcMin, m_recalcMax, m_maxLights);
             params.recalcMax = static_cast<uint32_t>(m_recalcMax);
             params.recalcMin = static_cast<uint32_t>(m_recalcMin);
@@ -183,7 +183,7 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
             // The comparison method: every slot freed and refilled every frame.
             params.recalcMin = params.recalcMax = params.maxLights;
         }
-        if (auto valid = params.validate(); !valid) return makeError("iir settings: {}", valid.error().message);
+        if (auto valid = params.validate(); !valid) return makeError("{}", valid.error().message);
         m_distribution.emplace(domain, params);
         BOUNCE_TRY(m_rayCaster, RayCaster::create(ctx.scene, 0.0f, GeometryFilter::StaticOnly));
     }
