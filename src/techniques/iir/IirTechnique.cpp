@@ -55,6 +55,9 @@ constexpr float kDirectionalDistanceInDiagonals = 100.0f;
 // light on a ceiling (area light) or a VPL on a wall does not hit its own surface (float rounding of
 // positions is ~1e-7 relative).
 constexpr float kSurfaceOffsetInDiagonals = 1e-3f;
+// Paraboloid depth range, in scene diagonals: no two static points are farther apart than the
+// diagonal; 1 % more keeps the farthest surfaces off the clamped end of the 16-bit range.
+constexpr float kShadowFarInDiagonals = 1.01f;
 
 struct VplGpu {
     glm::vec4 position;   // xyz: world, w: shadow-map layer
@@ -310,7 +313,7 @@ void IirTechnique::renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>
     ctx.counters["vplShadowMaps"] = static_cast<double>(slots.size());
     if (slots.empty()) return;
     const float offset = kSurfaceOffsetInDiagonals * m_sceneDiagonal;
-    const float far = 1.01f * m_sceneDiagonal;
+    const float far = kShadowFarInDiagonals * m_sceneDiagonal;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -425,8 +428,8 @@ void IirTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         setTiling(m_accumulate);
         const float clampDistance = m_clampDistance * m_sceneDiagonal;
         m_accumulate.set("u_maxGeometry", clampDistance > 0.0f ? 1.0f / (clampDistance * clampDistance) : 3.0e38f);
-        m_accumulate.set("u_far", 1.01f * m_sceneDiagonal);
-        m_accumulate.set("u_depthBias", m_shadowBias / 1.01f);
+        m_accumulate.set("u_far", kShadowFarInDiagonals * m_sceneDiagonal);
+        m_accumulate.set("u_depthBias", m_shadowBias / kShadowFarInDiagonals);
         m_accumulate.set("u_normalOffset", m_shadowBias * m_sceneDiagonal);
         m_accumulate.use();
         glDrawArrays(GL_TRIANGLES, 0, 3);
