@@ -2,6 +2,7 @@
 
 #include "techniques/ambient/AmbientTechnique.h"
 #include "techniques/direct/DirectTechnique.h"
+#include "techniques/iir/IirTechnique.h"
 
 #include <fmt/ranges.h>
 
@@ -11,6 +12,8 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
     static const std::vector<TechniqueInfo> list = {
         {"direct", "direct light only (no indirect light)", "baseline", [] { return std::make_unique<DirectTechnique>(); }},
         {"ambient", "direct light plus a constant ambient term", "baseline", [] { return std::make_unique<AmbientTechnique>(); }},
+        {"iir", "incremental instant radiosity: incrementally maintained VPLs, paraboloid shadow maps, interleaved sampling",
+         "Laine et al. 2007", [] { return std::make_unique<IirTechnique>(); }},
     };
     return list;
 }

@@ -1,0 +1,84 @@
+#pragma once
+// Incremental instant radiosity (Laine, Saransaari, Kontkanen, Lehtinen, Aila, EGSR 2007): a VPL set
+// maintained incrementally on the CPU (VplDistribution, CGAL), paraboloid shadow maps rendered only
+// for new VPLs, and interleaved-sampling accumulation with a geometry-aware filter. See IirTechnique.cpp
+// and docs/techniques/iir.md.
+#include "gpu/Program.h"
+#include "reference/RayCaster.h"
+#include "techniques/Technique.h"
+#include "techniques/iir/VplDistribution.h"
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace bounce {
+
+// What the VPLs are shot from: the scene's first light, turned into a point emitter (docs: "Lights").
+struct IirPrimaryLight {
+    Light emitter;        // a Spot or Point light at the current time
+    glm::vec3 flux{0.0f};  // W per channel, the flux the sampling domain distributes
+    bool supported = false;
+};
+
+class IirTechnique final : public Technique {
+public:
+    std::string_view name() const override { return "iir"; }
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+
+    // For tests and benchmarks: the distribution, the flux each sample carries this frame (W per
+    // channel, indexed by slot) and the primary light's flux.
+    const VplDistribution* distribution() const { return m_distribution ? &*m_distribution : nullptr; }
+    const std::vector<glm::vec3>& sampleFlux() const { return m_sampleFlux; }
+    glm::vec3 primaryFlux() const { return m_primary.flux; }
+    uint32_t shadowMapsRenderedLastFrame() const { return m_mapsRenderedLastFrame; }
+
+    // The primary light for `scene` at time t (exposed for tests).
+    static IirPrimaryLight primaryLight(const Scene& scene, float time);
+
+private:
+    struct SlotAttributes {
+        glm::vec3 normal{0.0f, 1.0f, 0.0f};  // unit, facing the light
+        glm::vec3 albedo{0.0f};              // diffuse albedo at the hit (blurred texture)
+    };
+    void updateVpls(FrameContext& ctx, const LightPose& pose);
+    void renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>& slots);
+    void uploadVpls();
+
+    // Settings (paper defaults where the paper gives one).
+    int m_maxLights = 256;
+    int m_recalcMin = 4;
+    int m_recalcMax = 8;
+    bool m_incremental = true;
+    int m_shadowMapSize = 256;
+    int m_tilesX = 4, m_tilesY = 4;
+    float m_normalThreshold = 0.8f;
+    float m_positionThreshold = 0.03f;
+    float m_clampDistance = 0.05f;
+    float m_shadowBias = 0.004f;
+    bool m_paperNormalisation = false;
+
+    // State.
+    const Scene* m_scene = nullptr;
+    IirPrimaryLight m_primary;
+    std::optional<VplDistribution> m_distribution;
+    std::optional<RayCaster> m_rayCaster;
+    std::vector<SlotAttributes> m_slots;
+    std::vector<glm::vec3> m_sampleFlux;
+    std::vector<glm::vec3> m_textureMeans;
+    float m_sceneDiagonal = 1.0f;
+    glm::ivec2 m_tileSize{1};
+    uint32_t m_mapsRenderedLastFrame = 0;
+    bool m_warned = false;
+
+    gl::Program m_paraboloid, m_split, m_accumulate, m_combine, m_filter;
+    gl::Texture m_shadowMaps;  // GL_DEPTH_COMPONENT16 2D array, one layer per slot
+    gl::Framebuffer m_shadowFbo;
+    gl::Texture m_splitPosition, m_splitNormal, m_tileIrradiance, m_irradiance;
+    gl::Framebuffer m_splitFbo, m_accumulateFbo, m_combineFbo, m_filterFbo;
+    gl::Buffer m_vplBuffer, m_tileBuffer;
+};
+
+}  // namespace bounce
