@@ -2,6 +2,9 @@
 
 #include "techniques/ambient/AmbientTechnique.h"
 #include "techniques/direct/DirectTechnique.h"
+#include "techniques/hisr/HisrTechnique.h"
+#include "techniques/isr/IsrTechnique.h"
+#include "techniques/rsm/RsmTechnique.h"
 
 #include <fmt/ranges.h>
 
@@ -11,6 +14,9 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
     static const std::vector<TechniqueInfo> list = {
         {"direct", "direct light only (no indirect light)", "baseline", [] { return std::make_unique<DirectTechnique>(); }},
         {"ambient", "direct light plus a constant ambient term", "baseline", [] { return std::make_unique<AmbientTechnique>(); }},
+        {"rsm", "reflective shadow map: every pixel gathers every VPL (Nichols 2010 baseline)", "Nichols 2010 thesis; Dachsbacher & Stamminger 2005", [] { return std::make_unique<RsmTechnique>(); }},
+        {"isr", "image-space radiosity: stencilled multiresolution gather, light-space VPL clusters (Nichols 2010 ch. 4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<IsrTechnique>(); }},
+        {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;
 }
