@@ -5,6 +5,7 @@
 #include "techniques/hisr/HisrTechnique.h"
 #include "techniques/isr/IsrTechnique.h"
 #include "techniques/rsm/RsmTechnique.h"
+#include "techniques/rsm_splat/RsmSplatTechnique.h"
 
 #include <fmt/ranges.h>
 
@@ -15,6 +16,7 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         {"direct", "direct light only (no indirect light)", "baseline", [] { return std::make_unique<DirectTechnique>(); }},
         {"ambient", "direct light plus a constant ambient term", "baseline", [] { return std::make_unique<AmbientTechnique>(); }},
         {"rsm", "reflective shadow map: every pixel gathers every VPL (Nichols 2010 baseline)", "Nichols 2010 thesis; Dachsbacher & Stamminger 2005", [] { return std::make_unique<RsmTechnique>(); }},
+        {"rsm-splat", "reflective shadow map splatting: full-screen, fixed-radius or fragment-matched splats (Nichols 2010 baseline)", "Dachsbacher & Stamminger 2005; Nichols 2010 thesis fig. 4.8", [] { return std::make_unique<RsmSplatTechnique>(); }},
         {"isr", "image-space radiosity: stencilled multiresolution gather, light-space VPL clusters (Nichols 2010 ch. 4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<IsrTechnique>(); }},
         {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
