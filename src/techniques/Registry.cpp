@@ -4,6 +4,7 @@
 #include "techniques/direct/DirectTechnique.h"
 #include "techniques/hisr/HisrTechnique.h"
 #include "techniques/isr/IsrTechnique.h"
+#include "techniques/multires_splat/MultiresSplatTechnique.h"
 #include "techniques/rsm/RsmTechnique.h"
 #include "techniques/rsm_splat/RsmSplatTechnique.h"
 
@@ -18,6 +19,7 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         {"rsm", "reflective shadow map: every pixel gathers every VPL (Nichols 2010 baseline)", "Nichols 2010 thesis; Dachsbacher & Stamminger 2005", [] { return std::make_unique<RsmTechnique>(); }},
         {"rsm-splat", "reflective shadow map splatting: full-screen, fixed-radius or fragment-matched splats (Nichols 2010 baseline)", "Dachsbacher & Stamminger 2005; Nichols 2010 thesis fig. 4.8", [] { return std::make_unique<RsmSplatTechnique>(); }},
         {"isr", "image-space radiosity: stencilled multiresolution gather, light-space VPL clusters (Nichols 2010 ch. 4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<IsrTechnique>(); }},
+        {"multires-splat", "multiresolution splatting: subsplat refinement by geometry shader + transform feedback (Nichols 2010 ch. 3)", "Nichols 2010 thesis ch. 3; Nichols & Wyman, I3D 2009", [] { return std::make_unique<MultiresSplatTechnique>(); }},
         {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;

@@ -109,6 +109,11 @@ std::vector<double> MultiresBuffer::drawStencilled(gl::Program& program) {
     return fragments;
 }
 
+void MultiresBuffer::bindAtlas() {
+    m_atlasFbo.bind();
+    glViewport(0, 0, m_atlasSize.x, m_atlasSize.y);
+}
+
 void MultiresBuffer::upsample() {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     m_atlas.bind(BINDING_TEX_TECH0);

@@ -21,6 +21,9 @@ public:
     // Draws `program` (full-screen-triangle vertex stage) over every level's rectangle with the stencil
     // test EQUAL 1; u_level and u_levelOrigin are set per level. Returns fragments per level.
     std::vector<double> drawStencilled(gl::Program& program);
+    // Binds the atlas framebuffer with the whole atlas as viewport (for point splatting, no stencil).
+    void bindAtlas();
+    glm::ivec2 atlasSize() const { return m_atlasSize; }
     // Coarse-to-fine upsampling (§3.2.5) into result() level 0.
     void upsample();
     // indirect = albedo / pi * result level 0.
