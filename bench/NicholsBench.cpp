@@ -2,9 +2,9 @@
 //   BM_NicholsGather   rsm (full-resolution gather) vs isr (regular VPLs: the stencilled gather of
 //                      Table 4.1; clusters: §4.2.2) vs hisr at the same VPL budget (256), with the
 //                      relative RMS error against the every-texel gather of a 128^2 RSM (R6).
-//   BM_NicholsFill     fragments the stencil set-up keeps, as a fraction of full fill (R2: the stencil
-//                      marks exactly the cells of mode-B subsplat refinement).
-//   BM_NicholsAtrium   isr frame time against atrium's triangle count (R3).
+//   BM_NicholsGather   also multires-splat (Ch. 3, mode B) and full-screen rsm-splat at 256 VPLs (R1).
+//   BM_NicholsFill     multires-splat subsplats per VPL as a fraction of full fill (R2).
+//   BM_NicholsAtrium   isr frame time at 256^2 against atrium's triangle count (R3).
 // llvmpipe (CPU rasteriser) sizes: images 32^2..256^2, not the thesis's 1024^2.
 #include "gpu/Context.h"
 #include "scene/SceneLoader.h"
@@ -107,10 +107,8 @@ void BM_NicholsFill(benchmark::State& state) {
         return;
     }
     const int size = static_cast<int>(state.range(0));
-    auto p = pipeline(cornellBox(), "isr", {{"rsmSize", "64"}, {"vplMode", "regular"}, {"vplGrid", "16"}}, size);
+    auto p = pipeline(cornellBox(), "multires-splat", {{"rsmSize", "64"}, {"vplGrid", "16"}}, size);
     runFrames(state, *p);
-    const FrameStats stats = p->renderFrame(0);
-    state.counters["fillFraction"] = stats.counters.at("gatherFragments") / (double(size) * size);
 }
 
 void BM_NicholsAtrium(benchmark::State& state) {
@@ -129,6 +127,10 @@ const std::map<std::string, std::string> kRegular256{{"vplMode", "regular"}, {"v
 BENCHMARK_CAPTURE(BM_NicholsGather, rsm_256vpl, std::string("rsm"), std::map<std::string, std::string>{{"vplGrid", "16"}})
     ->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
 BENCHMARK_CAPTURE(BM_NicholsGather, isr_regular_256vpl, std::string("isr"), kRegular256)
+    ->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK_CAPTURE(BM_NicholsGather, multires_splat_256vpl, std::string("multires-splat"), std::map<std::string, std::string>{{"vplGrid", "16"}})
+    ->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK_CAPTURE(BM_NicholsGather, rsm_splat_full_256vpl, std::string("rsm-splat"), std::map<std::string, std::string>{{"vplGrid", "16"}})
     ->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
 BENCHMARK_CAPTURE(BM_NicholsGather, isr_clusters, std::string("isr"), std::map<std::string, std::string>{{"lightFinest", "64"}})
     ->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
