@@ -41,6 +41,25 @@ TEST_F(MultiresSplatGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     EXPECT_LT(error, 0.20);
 }
 
+TEST_F(MultiresSplatGpuTest, DetailModulationScalesBetweenOneMinusAlphaAndOne) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    const std::map<std::string, std::string> base = {{"rsmSize", "64"}, {"vplGrid", "8"}};
+    auto modulated = base;
+    modulated["detailModulation"] = "true";
+    modulated["detailAlpha"] = "0.5";
+    const Image off = renderIndirect(*scene, "multires-splat", base, 32);
+    const Image on = renderIndirect(*scene, "multires-splat", modulated, 32);
+    // Eq. 3.3: c * (alpha <V,N> + 1 - alpha) with <V,N> in [0, 1]; 1e-5 relative for float rounding.
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_LE(on.at(x, y)[c], off.at(x, y)[c] * (1.0f + 1e-5f) + 1e-12f);
+                ASSERT_GE(on.at(x, y)[c], 0.5f * off.at(x, y)[c] * (1.0f - 1e-5f));
+            }
+    EXPECT_LT(totalRadiance(on), totalRadiance(off));
+}
+
 TEST_F(MultiresSplatGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);

@@ -10,8 +10,9 @@
 // "upsample" (coarse-to-fine, §3.2.5, then x albedo/pi).
 // Counters: vpls, subsplats (per VPL: the list is shared), fillFraction = subsplats / pixels (R2).
 //
+// Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5).
 // Not implemented (see docs/techniques/multires-splat.md): mode A (per-VPL BRDF-driven refinement for
-// Phong surfaces), Eq. 3.3's detail modulation, the point/quad switch, the curvature mipmap.
+// Phong surfaces), the point/quad switch, the curvature mipmap.
 // Deviations: the geometry shader runs four instances per subsplat, each emitting at most one point
 // (the thesis's shader emits up to four): on llvmpipe, multi-vertex geometry-shader output captured by
 // transform feedback lost primitives (measured: 2251 in, 2155 out of a pass-through pass); a flattened atlas instead of one render target per level (same texels); the refinement
@@ -38,6 +39,8 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
     v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2, metres (assumption)", 0.0f, 10.0f);
+    v.field("detailModulation", m_detailModulation, "Eq. 3.3: modulate indirect light by alpha <V,N> + (1 - alpha) (§3.3.3)");
+    v.field("detailAlpha", m_detailAlpha, "Eq. 3.3's alpha (thesis 0.5, Fig. 3.9)", 0.0f, 1.0f);
     v.field("depthThreshold", m_thresholds.depth, "max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_thresholds.normal, "normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
@@ -152,7 +155,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("upsample");
         m_buffer->upsample();
-        m_buffer->combine(ctx.gbuffer, indirect);
+        m_buffer->combine(ctx.gbuffer, indirect, m_detailModulation ? m_detailAlpha : 0.0f);
     }
     // Subsplats per level (Table 3.1): read back the final list (16 bytes per subsplat).
     std::vector<glm::ivec4> list(count);

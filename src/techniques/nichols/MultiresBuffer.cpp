@@ -133,7 +133,7 @@ void MultiresBuffer::upsample() {
     }
 }
 
-void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& indirect) {
+void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha) {
     m_combineFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
     m_combineFbo.setDrawBuffers(1);
     BOUNCE_CHECK(m_combineFbo.complete(), "nichols combine framebuffer");
@@ -143,6 +143,7 @@ void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& 
     glDisable(GL_BLEND);
     gbuffer.bind();
     m_result.bind(BINDING_TEX_TECH0);
+    m_combine.set("u_detailAlpha", detailAlpha);
     m_combine.use();
     gl::Context::current()->bindEmptyVertexArray();
     glDrawArrays(GL_TRIANGLES, 0, 3);

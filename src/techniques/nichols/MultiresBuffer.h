@@ -26,8 +26,8 @@ public:
     glm::ivec2 atlasSize() const { return m_atlasSize; }
     // Coarse-to-fine upsampling (§3.2.5) into result() level 0.
     void upsample();
-    // indirect = albedo / pi * result level 0.
-    void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect);
+    // indirect = albedo / pi * result level 0, times Eq. 3.3's detail term when detailAlpha > 0.
+    void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha = 0.0f);
 
     glm::ivec2 levelOrigin(int level) const { return m_origins[static_cast<size_t>(level)]; }
     glm::ivec2 levelSize(int level) const { return m_sizes[static_cast<size_t>(level)]; }
