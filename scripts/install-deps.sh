@@ -11,6 +11,7 @@ packages=(
   libstb-dev libopenexr-dev libimgui-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  xvfb xauth
 )
 
 missing=()

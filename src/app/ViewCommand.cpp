@@ -5,6 +5,7 @@
 // Techniques, components, exposure and every setting are switchable at run time in the panel.
 #include "app/Cli.h"
 #include "app/Options.h"
+#include "core/ImageIo.h"
 #include "core/ToneMap.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
@@ -31,6 +32,8 @@ struct ViewOptions {
     std::string technique = "direct";
     std::string size = "1024x768";
     std::vector<std::string> settings;
+    int quitAfter = 0;  // frames; 0 = run until the window closes (automated smoke tests use it)
+    std::string screenshot;  // with quitAfter: PNG of the last displayed frame
 };
 
 // ImGui widgets for any Configurable: the same declaration that drives --set and `bounce list`.
@@ -141,7 +144,9 @@ int runView(const ViewOptions& o) {
     FrameStats lastStats;
     std::string lastError;
 
+    int displayed = 0;
     while (!glfwWindowShouldClose(window)) {
+        if (o.quitAfter > 0 && displayed >= o.quitAfter) break;
         glfwPollEvents();
         const double now = glfwGetTime();
         const float dt = static_cast<float>(now - lastTime);
@@ -301,6 +306,19 @@ int runView(const ViewOptions& o) {
         ImGui::End();
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        ++displayed;
+        if (o.quitAfter > 0 && displayed == o.quitAfter && !o.screenshot.empty()) {
+            Image shot(fbw, fbh);
+            std::vector<float> rgb(static_cast<size_t>(fbw) * fbh * 3);
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glReadPixels(0, 0, fbw, fbh, GL_RGB, GL_FLOAT, rgb.data());
+            for (int y = 0; y < fbh; ++y)
+                for (int x = 0; x < fbw; ++x) {
+                    const float* p = &rgb[(static_cast<size_t>(y) * fbw + x) * 3];
+                    shot.at(x, fbh - 1 - y) = {p[0], p[1], p[2]};
+                }
+            if (auto r = writeDisplayPng(o.screenshot, shot); !r.ok()) return failCommand(cmd, r.error().message);
+        }
         (*context)->swapBuffers();
     }
     pipeline.reset();
@@ -320,6 +338,8 @@ void registerViewCommand(CLI::App& root, CommandAction& action) {
     c->add_option("--technique", o->technique, "initial technique")->capture_default_str();
     c->add_option("--size", o->size, "window size WIDTHxHEIGHT")->capture_default_str();
     c->add_option("--set", o->settings, "setting name=value (repeatable)");
+    c->add_option("--quit-after", o->quitAfter, "close after this many frames (0: run until closed)");
+    c->add_option("--screenshot", o->screenshot, "with --quit-after: save the last frame's window as PNG");
     c->callback([&action, o] { action = [o] { return runView(*o); }; });
 }
 

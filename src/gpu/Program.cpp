@@ -31,14 +31,25 @@ Expected<std::string> shaderFileText(const std::string& file) {
     return makeError("shader file '{}' not found under shaders/", file);
 }
 
-// Resolves #include "x" recursively. Each file gets an index in fileTable; "#line N index" keeps
-// the compiler's messages mappable back to file:line.
-Expected<void> expand(const std::string& file, std::vector<std::string>& fileTable, std::string& out, int depth) {
+// Where each line of the assembled source came from. Drivers differ in how they honour the
+// source-string number of "#line" (Mesa always reports 0), so no #line is emitted: the compiler's
+// line numbers are positions in the assembled text, mapped back through this table.
+struct LineOrigin {
+    std::string file;
+    int line = 0;
+};
+
+void appendLine(std::string& out, std::vector<LineOrigin>& origins, const std::string& text, const std::string& file,
+                int line) {
+    out += text;
+    out += '\n';
+    origins.push_back({file, line});
+}
+
+// Resolves #include "x" recursively (paths relative to shaders/).
+Expected<void> expand(const std::string& file, std::vector<LineOrigin>& origins, std::string& out, int depth) {
     if (depth > 16) return makeError("{}: #include nested too deeply (cycle?)", file);
     BOUNCE_TRY(std::string text, shaderFileText(file));
-    const int index = static_cast<int>(fileTable.size());
-    fileTable.push_back(file);
-    out += fmt::format("#line 1 {}\n", index);
     std::istringstream in(text);
     std::string line;
     int lineNo = 0;
@@ -47,34 +58,45 @@ Expected<void> expand(const std::string& file, std::vector<std::string>& fileTab
         ++lineNo;
         std::smatch m;
         if (std::regex_match(line, m, includeRe)) {
-            auto r = expand(m[1].str(), fileTable, out, depth + 1);
+            auto r = expand(m[1].str(), origins, out, depth + 1);
             if (!r.ok()) return makeError("{}:{}: {}", file, lineNo, r.error().message);
-            out += fmt::format("#line {} {}\n", lineNo + 1, index);
         } else {
-            out += line;
-            out += '\n';
+            appendLine(out, origins, line, file, lineNo);
         }
     }
     return {};
 }
 
-// Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) prefixes into "file:12: error".
-std::string mapLog(const std::string& log, const std::vector<std::string>& fileTable) {
+// Rewrites "0:12(5):" (Mesa) and "0(12) :" (NVIDIA) prefixes into "file:line:".
+std::string mapLog(const std::string& log, const std::vector<LineOrigin>& origins) {
     static const std::regex re(R"((^|\n)(\d+)(?::(\d+)\((\d+)\)|\((\d+)\))\s*:?)");
     std::string result;
     auto begin = log.cbegin();
     std::smatch m;
     while (std::regex_search(begin, log.cend(), m, re)) {
         result.append(begin, m[0].first);
-        const size_t idx = std::stoul(m[2].str());
-        const std::string lineNo = m[3].matched ? m[3].str() : m[5].str();
-        const std::string name = idx < fileTable.size() ? fileTable[idx] : "?";
-        result += m[1].str() + fmt::format("{}:{}:", name, lineNo);
+        const size_t lineNo = std::stoul(m[3].matched ? m[3].str() : m[5].str());
+        if (lineNo >= 1 && lineNo <= origins.size())
+            result += m[1].str() + fmt::format("{}:{}:", origins[lineNo - 1].file, origins[lineNo - 1].line);
+        else
+            result += m[0].str();
         begin = m[0].second;
     }
     result.append(begin, log.cend());
     while (!result.empty() && (result.back() == '\n' || result.back() == '\0')) result.pop_back();
     return result;
+}
+
+Expected<std::string> assemble(const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
+                               std::vector<LineOrigin>& origins) {
+    std::string src;
+    appendLine(src, origins, "#version 450 core", "(prelude)", 1);
+    for (const auto& [name, value] : defines)
+        appendLine(src, origins, fmt::format("#define {} {}", name, value), "(host define)", 1);
+    // Bindings.h first, so binding indices are shared with C++.
+    BOUNCE_TRY_VOID(expand("Bindings.h", origins, src, 0));
+    BOUNCE_TRY_VOID(expand(file, origins, src, 0));
+    return src;
 }
 
 const char* stageName(GLenum stage) {
@@ -91,17 +113,9 @@ const char* stageName(GLenum stage) {
 
 }  // namespace
 
-Expected<std::string> preprocessShader(const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
-                                       std::vector<std::string>* fileTableOut) {
-    std::vector<std::string> fileTable;
-    std::string body;
-    // Bindings.h first: it is index 0, so binding indices are shared with C++.
-    std::string src = "#version 450 core\n";
-    for (const auto& [name, value] : defines) src += fmt::format("#define {} {}\n", name, value);
-    BOUNCE_TRY_VOID(expand("Bindings.h", fileTable, src, 0));
-    BOUNCE_TRY_VOID(expand(file, fileTable, src, 0));
-    if (fileTableOut) *fileTableOut = fileTable;
-    return src;
+Expected<std::string> preprocessShader(const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines) {
+    std::vector<LineOrigin> origins;
+    return assemble(file, defines, origins);
 }
 
 Expected<Program> Program::build(const ProgramDesc& desc) {
@@ -112,8 +126,8 @@ Expected<Program> Program::build(const ProgramDesc& desc) {
     p.m_label = desc.label;
     std::vector<Handle<ShaderTraits>> shaders;
     for (const auto& [stage, file] : desc.stages) {
-        std::vector<std::string> fileTable;
-        auto source = preprocessShader(file, desc.defines, &fileTable);
+        std::vector<LineOrigin> origins;
+        auto source = assemble(file, desc.defines, origins);
         if (!source.ok()) return makeError("program '{}': {}", desc.label, source.error().message);
         GLuint shader = glCreateShader(stage);
         shaders.emplace_back(shader);
@@ -128,7 +142,7 @@ Expected<Program> Program::build(const ProgramDesc& desc) {
             std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
             glGetShaderInfoLog(shader, length, nullptr, log.data());
             return makeError("program '{}': {} shader {} failed to compile:\n{}", desc.label, stageName(stage), file,
-                             mapLog(log, fileTable));
+                             mapLog(log, origins));
         }
         glAttachShader(program, shader);
     }

@@ -56,7 +56,7 @@ private:
 };
 
 // The preprocessed source of one shader file (includes resolved), for tests and error messages.
-Expected<std::string> preprocessShader(const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
-                                       std::vector<std::string>* fileTable = nullptr);
+Expected<std::string> preprocessShader(const std::string& file,
+                                       const std::vector<std::pair<std::string, std::string>>& defines);
 
 }  // namespace bounce::gl

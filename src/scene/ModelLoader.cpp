@@ -25,7 +25,7 @@ namespace {
 
 // KHR_lights_punctual gives candela (point, spot) and lux (directional). bounce's lights are radiometric;
 // 683 lm/W is the luminous efficacy that defines the candela (555 nm), so 1 cd = 1/683 W/sr and
-// 1 lx = 1/683 W/m^2 (docs/scene.md "glTF light units").
+// 1 lx = 1/683 W/m^2 (docs/scene.md "Model files").
 constexpr float kLumensPerWatt = 683.0f;
 // glTF's dielectric reflectance at normal incidence (glTF 2.0 metallic-roughness model).
 constexpr float kGltfDielectricF0 = 0.04f;

@@ -37,6 +37,7 @@ public:
     Technique& technique() { return *m_technique; }
     const render::RenderSettings& renderSettings() const { return m_settings; }
     render::SceneGpu& sceneGpu() { return m_sceneGpu; }
+    const render::GBuffer& gbuffer() const { return m_gbuffer; }
     glm::ivec2 size() const { return m_size; }
 
 private:

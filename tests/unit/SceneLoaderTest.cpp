@@ -267,6 +267,48 @@ TEST(ModelLoader, GltfWithLightsCameraAndEmbeddedTexture) {
     EXPECT_NEAR(cam.farPlane, 50.0f, 1e-4f);
 }
 
+TEST(ModelLoader, BinaryGlb) {
+    // GLB container: 12-byte header, a JSON chunk and a BIN chunk, each padded to 4 bytes.
+    std::string bin;
+    const float positions[9] = {0, 0, 0, 2, 0, 0, 0, 2, 0};
+    const uint16_t indices[4] = {0, 1, 2, 0};
+    bin.append(reinterpret_cast<const char*>(positions), sizeof positions);
+    bin.append(reinterpret_cast<const char*>(indices), sizeof indices);
+    std::string js = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"name": "glbTri", "mesh": 0, "scale": [1, 1, 3]}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+      "buffers": [{"byteLength": )" + std::to_string(bin.size()) + R"(}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [2, 2, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+    while (js.size() % 4 != 0) js += ' ';
+    const auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const std::string glb = "glTF" + u32(2) + u32(static_cast<uint32_t>(12 + 8 + js.size() + 8 + bin.size())) +
+                            u32(static_cast<uint32_t>(js.size())) + "JSON" + js +
+                            u32(static_cast<uint32_t>(bin.size())) + std::string("BIN\0", 4) + bin;
+    const fs::path p = writeFile("tri.glb", glb);
+    Expected<Scene> scene = loadScene(p.string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->objects.size(), 1u);
+    EXPECT_EQ(scene->objects[0].name, "glbTri");
+    EXPECT_EQ(scene->triangleCount(), 1u);
+    glm::vec3 lo, hi;
+    scene->bounds(0.0f, lo, hi);
+    EXPECT_NEAR(hi.x, 2.0f, 1e-6f);
+    EXPECT_NEAR(hi.z, 0.0f, 1e-6f);  // the z scale leaves a z = 0 triangle in place
+}
+
+TEST(ModelLoader, IndexOutOfRangeInAFileIsAnError) {
+    const fs::path p = writeFile("badindex.ply",
+                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                 "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+    Expected<Scene> scene = loadScene(p.string());
+    ASSERT_FALSE(scene.ok());
+    EXPECT_TRUE(contains(scene.error().message, "badindex.ply")) << scene.error().message;
+    EXPECT_TRUE(contains(scene.error().message, "out of range")) << scene.error().message;
+}
+
 TEST(ModelLoader, AllDegenerateMeshIsAnError) {
     const fs::path p = writeFile("flat.obj", "o sliver\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
     Expected<Scene> scene = loadScene(p.string());

@@ -13,7 +13,7 @@ Expected<void> AmbientTechnique::setup(const SetupContext&) {
 }
 
 void AmbientTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
-    auto scope = ctx.timers.scope("ambient");
+    auto scope = ctx.timers.scope("term");
     m_fbo.attach(GL_COLOR_ATTACHMENT0, indirect);
     m_fbo.setDrawBuffers(1);
     BOUNCE_CHECK(m_fbo.complete(), "ambient framebuffer");

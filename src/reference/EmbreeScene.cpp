@@ -1,0 +1,147 @@
+#include "reference/EmbreeScene.h"
+
+#include "core/Log.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <cstring>
+
+namespace bounce {
+
+namespace {
+
+void onEmbreeError(void* /*user*/, RTCError code, const char* message) {
+    spdlog::error("embree: error {}: {}", static_cast<int>(code), message ? message : "");
+}
+
+void computeFaceData(SceneGeometry& g) {
+    g.faceNormals.resize(g.triangles.size());
+    g.areas.resize(g.triangles.size());
+    for (size_t i = 0; i < g.triangles.size(); ++i) {
+        const glm::uvec3 t = g.triangles[i];
+        const glm::vec3 c = glm::cross(g.positions[t.y] - g.positions[t.x], g.positions[t.z] - g.positions[t.x]);
+        const float len = glm::length(c);
+        // A degenerate triangle is never hit (Embree skips it) and never sampled (area 0).
+        g.faceNormals[i] = len > 0.0f ? c / len : glm::vec3(0.0f, 0.0f, 1.0f);
+        g.areas[i] = 0.5f * len;
+    }
+}
+
+// True when every vertex normal equals the face normal of each triangle using it (within float
+// rounding of a normalised vector), so interpolation would only reproduce the face normal.
+bool isFlat(const SceneGeometry& g) {
+    constexpr float kSameDirection = 0.99999f;  // cos of 0.26 degrees
+    for (size_t i = 0; i < g.triangles.size(); ++i) {
+        if (!(g.areas[i] > 0.0f)) continue;
+        const glm::uvec3 t = g.triangles[i];
+        const glm::vec3 n = g.faceNormals[i];
+        if (glm::dot(g.normals[t.x], n) < kSameDirection || glm::dot(g.normals[t.y], n) < kSameDirection ||
+            glm::dot(g.normals[t.z], n) < kSameDirection)
+            return false;
+    }
+    return true;
+}
+
+Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, unsigned id) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (!geom) return makeError("embree: cannot create a triangle geometry");
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), g.positions.size()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(unsigned), g.triangles.size()));
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geom);
+        return makeError("embree: out of memory for {} vertices", g.positions.size());
+    }
+    std::memcpy(vertices, g.positions.data(), g.positions.size() * sizeof(glm::vec3));
+    std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(glm::uvec3));
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, id);
+    rtcReleaseGeometry(geom);
+    return {};
+}
+
+}  // namespace
+
+Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOptions& options) {
+    EmbreeScene out;
+    out.m_time = options.time;
+    out.m_device.reset(rtcNewDevice(nullptr));
+    if (!out.m_device) return makeError("embree: cannot create a device (error {})", static_cast<int>(rtcGetDeviceError(nullptr)));
+    rtcSetDeviceErrorFunction(out.m_device.get(), onEmbreeError, nullptr);
+
+    for (size_t oi = 0; oi < scene.objects.size(); ++oi) {
+        const Object& object = scene.objects[oi];
+        if (options.filter == GeometryFilter::StaticOnly && object.isDynamic()) continue;
+        if (object.mesh >= scene.meshes.size())
+            return makeError("object '{}': mesh index {} out of range ({} meshes)", object.name, object.mesh,
+                             scene.meshes.size());
+        if (object.material >= scene.materials.size())
+            return makeError("object '{}': material index {} out of range ({} materials)", object.name,
+                             object.material, scene.materials.size());
+        const Mesh& mesh = scene.meshes[object.mesh];
+        if (mesh.triangleCount() == 0) continue;
+        const bool hasNormals = mesh.normals.size() == mesh.positions.size();
+        const bool hasUvs = mesh.uvs.size() == mesh.positions.size();
+        for (uint32_t index : mesh.indices)
+            if (index >= mesh.positions.size())
+                return makeError("mesh '{}': vertex index {} out of range ({} vertices)", mesh.name, index,
+                                 mesh.positions.size());
+
+        SceneGeometry g;
+        g.kind = SceneGeometry::Kind::Object;
+        g.objectIndex = static_cast<uint32_t>(oi);
+        g.materialIndex = object.material;
+        g.twoSided = scene.materials[object.material].twoSided;
+        const glm::mat4 worldFromObject = object.worldFromObject(options.time);
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
+        g.positions.reserve(mesh.positions.size());
+        for (const glm::vec3& p : mesh.positions) g.positions.push_back(glm::vec3(worldFromObject * glm::vec4(p, 1.0f)));
+        if (hasNormals) {
+            g.normals.reserve(mesh.normals.size());
+            for (const glm::vec3& n : mesh.normals) {
+                const glm::vec3 w = normalMatrix * n;
+                const float len = glm::length(w);
+                g.normals.push_back(len > 0.0f ? w / len : glm::vec3(0.0f));
+            }
+        }
+        if (hasUvs && scene.materials[object.material].baseColorTexture >= 0) g.uvs = mesh.uvs;
+        g.triangles.resize(mesh.triangleCount());
+        std::memcpy(g.triangles.data(), mesh.indices.data(), g.triangles.size() * sizeof(glm::uvec3));
+        computeFaceData(g);
+        if (hasNormals && isFlat(g)) g.normals.clear();
+        out.m_geometries.push_back(std::move(g));
+    }
+
+    if (options.includeAreaLights) {
+        for (size_t li = 0; li < scene.lights.size(); ++li) {
+            if (scene.lights[li].type != LightType::Area) continue;
+            const Light light = scene.lights[li].at(options.time);
+            if (!(light.area() > 0.0f)) return makeError("light '{}': area light with zero area", light.name);
+            SceneGeometry g;
+            g.kind = SceneGeometry::Kind::AreaLight;
+            g.lightIndex = static_cast<uint32_t>(li);
+            const glm::vec3 c = light.position, hu = 0.5f * light.edgeU, hv = 0.5f * light.edgeV;
+            // Counter-clockwise seen from the emitting side, so faceNormals equal areaNormal().
+            g.positions = {c - hu - hv, c + hu - hv, c + hu + hv, c - hu + hv};
+            g.triangles = {glm::uvec3(0, 1, 2), glm::uvec3(0, 2, 3)};
+            computeFaceData(g);
+            out.m_geometries.push_back(std::move(g));
+        }
+    }
+
+    out.m_scene.reset(rtcNewScene(out.m_device.get()));
+    if (!out.m_scene) return makeError("embree: cannot create a scene");
+    // The BVH is built once per render and traced billions of times: spend on quality.
+    rtcSetSceneBuildQuality(out.m_scene.get(), RTC_BUILD_QUALITY_HIGH);
+    for (size_t i = 0; i < out.m_geometries.size(); ++i)
+        BOUNCE_TRY_VOID(attach(out.m_device.get(), out.m_scene.get(), out.m_geometries[i], static_cast<unsigned>(i)));
+    rtcCommitScene(out.m_scene.get());
+    const RTCError error = rtcGetDeviceError(out.m_device.get());
+    if (error != RTC_ERROR_NONE) return makeError("embree: building the BVH failed (error {})", static_cast<int>(error));
+    return out;
+}
+
+}  // namespace bounce

@@ -1,0 +1,108 @@
+#pragma once
+// The scene's triangles at one instant, in world space, inside an Embree 3 BVH, together with the
+// per-triangle data that shading needs (normals, uvs, material). Shared by the path tracer and the
+// ray-casting service; not meant for use outside src/reference.
+//
+// Embree geometry ids are indices into geometries(): first one geometry per selected object, then
+// (when asked) one two-triangle geometry per rectangular area light.
+#include "core/Error.h"
+#include "scene/Scene.h"
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace bounce {
+
+enum class GeometryFilter {
+    StaticOnly,  // objects without animation only
+    All,
+};
+
+struct EmbreeSceneOptions {
+    float time = 0.0f;  // seconds; objects and lights are placed as at this time
+    GeometryFilter filter = GeometryFilter::All;
+    bool includeAreaLights = false;  // add the rectangles of LightType::Area lights as geometry
+};
+
+inline constexpr uint32_t kNoIndex = 0xffffffffu;
+
+struct SceneGeometry {
+    enum class Kind : uint8_t { Object, AreaLight };
+    Kind kind = Kind::Object;
+    uint32_t objectIndex = kNoIndex;  // Scene::objects, for Kind::Object
+    uint32_t materialIndex = kNoIndex;
+    uint32_t lightIndex = kNoIndex;  // Scene::lights, for Kind::AreaLight
+    bool twoSided = false;
+    // World space at the build time. normals is empty when the mesh has none or when every vertex
+    // normal equals its face normal (flat shading, e.g. boxes): faceNormals are used then. uvs is
+    // empty when the mesh has none or its material has no texture (nothing reads them).
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::uvec3> triangles;
+    // Unit normal of the counter-clockwise winding (OpenGL's front face), and area in m^2.
+    std::vector<glm::vec3> faceNormals;
+    std::vector<float> areas;
+};
+
+// A point on a surface found by a ray.
+struct SurfacePoint {
+    glm::vec3 position;
+    glm::vec3 geometricNormal;  // unit, front side (counter-clockwise winding)
+    glm::vec3 shadingNormal;    // unit, interpolated vertex normal turned into the front hemisphere
+    glm::vec2 uv;
+};
+
+class EmbreeScene {
+public:
+    static Expected<EmbreeScene> build(const Scene& scene, const EmbreeSceneOptions& options);
+
+    RTCScene handle() const noexcept { return m_scene.get(); }
+    const std::vector<SceneGeometry>& geometries() const noexcept { return m_geometries; }
+    const SceneGeometry& geometry(uint32_t geomId) const noexcept { return m_geometries[geomId]; }
+    float time() const noexcept { return m_time; }
+
+    // (u, v) are Embree's barycentrics: p = (1-u-v) p0 + u p1 + v p2. Inline: it runs once per ray.
+    SurfacePoint surface(uint32_t geomId, uint32_t primId, float u, float v) const noexcept {
+        const SceneGeometry& g = m_geometries[geomId];
+        const glm::uvec3 t = g.triangles[primId];
+        const float w = 1.0f - u - v;
+        SurfacePoint s;
+        s.position = w * g.positions[t.x] + u * g.positions[t.y] + v * g.positions[t.z];
+        s.geometricNormal = g.faceNormals[primId];
+        s.shadingNormal = s.geometricNormal;
+        if (!g.normals.empty()) {
+            const glm::vec3 n = w * g.normals[t.x] + u * g.normals[t.y] + v * g.normals[t.z];
+            const float len = glm::length(n);
+            if (len > 0.0f) {
+                s.shadingNormal = n / len;
+                // A vertex normal more than 90 degrees from its face belongs to the other side (a
+                // mirroring transform, or a normal authored for the back face): keep it consistent.
+                if (glm::dot(s.shadingNormal, s.geometricNormal) < 0.0f) s.shadingNormal = -s.shadingNormal;
+            }
+        }
+        s.uv = g.uvs.empty() ? glm::vec2(0.0f) : w * g.uvs[t.x] + u * g.uvs[t.y] + v * g.uvs[t.z];
+        return s;
+    }
+
+private:
+    struct DeviceDeleter {
+        void operator()(RTCDeviceTy* d) const noexcept { rtcReleaseDevice(d); }
+    };
+    struct SceneDeleter {
+        void operator()(RTCSceneTy* s) const noexcept { rtcReleaseScene(s); }
+    };
+
+    EmbreeScene() = default;
+
+    std::unique_ptr<RTCDeviceTy, DeviceDeleter> m_device;
+    std::unique_ptr<RTCSceneTy, SceneDeleter> m_scene;
+    std::vector<SceneGeometry> m_geometries;
+    float m_time = 0.0f;
+};
+
+}  // namespace bounce

@@ -1,0 +1,150 @@
+#pragma once
+// Next-event estimation for the reference path tracer: one list of every light source in the scene
+// (point, spot and directional lights, rectangular area lights and each triangle of every object
+// whose material emits), from which one is picked per shading point with probability proportional
+// to its emitted flux (luminance), in constant time through an alias table. Triangles of one emissive object therefore get area-weighted
+// probabilities; a point on a rectangle or triangle is then chosen uniformly by area.
+//
+// Directional lights have no finite flux: they are weighted by the flux that crosses the disc of
+// the scene's bounding sphere, pi R^2 E (pbrt's convention for distant lights).
+#include "reference/EmbreeScene.h"
+#include "reference/Sampling.h"
+#include "scene/Scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace bounce {
+
+struct LightSample {
+    glm::vec3 wi;            // unit direction from the shading point towards the light
+    float distance;          // to the sampled point; infinity for directional lights
+    glm::vec3 lightPoint;    // shadow-ray end, already moved off the emitting surface
+    glm::vec3 contribution;  // incident radiance (delta lights: irradiance at normal incidence) / pdf
+    float pdf;               // solid-angle pdf including the light choice; 0 for delta lights
+};
+
+class LightSampler {
+public:
+    LightSampler(const Scene& scene, const EmbreeScene& embree);
+
+    size_t lightCount() const noexcept { return m_entries.size(); }
+    bool empty() const noexcept { return m_entries.empty(); }
+
+    // Samples a light as seen from point p. Returns false when the chosen light sends nothing
+    // towards p (behind a one-sided emitter, outside a spot cone).
+    bool sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept;
+
+    // Solid-angle pdf with which sample() would have produced a point on triangle primId of
+    // geometry geomId, seen at `distance` under cosine `cosLight` (absolute value) at the light.
+    float pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept;
+
+private:
+    enum class Kind : uint8_t { Point, Spot, Directional, Area, Triangle };
+    struct Entry {
+        Kind kind;
+        bool twoSided = false;
+        glm::vec3 position{0.0f};  // point, spot; area and triangle: a corner
+        glm::vec3 edge1{0.0f};     // area, triangle
+        glm::vec3 edge2{0.0f};
+        glm::vec3 normal{0.0f};    // spot axis, directional propagation direction, emitter normal
+        glm::vec3 emitted{0.0f};   // intensity W/sr, irradiance W/m^2 or radiance W/(m^2 sr)
+        float area = 0.0f;
+        float cosCutoff = 0.0f;  // spot
+        float exponent = 1.0f;   // spot
+        float pmf = 0.0f;        // probability of being chosen
+    };
+    struct AliasSlot {
+        float threshold = 1.0f;  // keep the slot's own entry below this, else take `alias`
+        uint32_t alias = 0;
+    };
+
+    void add(const Entry& entry, float weight);
+
+    std::vector<Entry> m_entries;
+    std::vector<float> m_weights;  // unnormalised flux, for construction
+    // Walker's alias table (built with Vose's method): O(1) choice without a branchy search.
+    std::vector<AliasSlot> m_aliasTable;
+    // Per Embree geometry: the first entry of an emissive object's triangles (entry = base + primId),
+    // the entry of an area light, or kNoIndex.
+    std::vector<uint32_t> m_entryOfGeometry;
+};
+
+inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept {
+    const float scaled = uSelect * static_cast<float>(m_entries.size());
+    const size_t slot = std::min(static_cast<size_t>(scaled), m_entries.size() - 1);
+    const float u = scaled - static_cast<float>(slot);
+    const AliasSlot& a = m_aliasTable[slot];
+    const Entry& e = m_entries[u < a.threshold ? slot : a.alias];
+    const float pmf = e.pmf;
+    if (!(pmf > 0.0f)) return false;
+    switch (e.kind) {
+        case Kind::Point:
+        case Kind::Spot: {
+            const glm::vec3 toLight = e.position - p;
+            const float d2 = glm::dot(toLight, toLight);
+            if (!(d2 > 0.0f)) return false;
+            const float d = std::sqrt(d2);
+            out.wi = toLight * (1.0f / d);
+            out.distance = d;
+            out.lightPoint = e.position;
+            out.pdf = 0.0f;
+            glm::vec3 intensity = e.emitted;
+            if (e.kind == Kind::Spot) {
+                const float cosAlpha = -glm::dot(out.wi, e.normal);
+                if (!(cosAlpha > e.cosCutoff) || cosAlpha <= 0.0f) return false;
+                intensity *= std::pow(cosAlpha, e.exponent);
+            }
+            out.contribution = intensity * (1.0f / (d2 * pmf));
+            return true;
+        }
+        case Kind::Directional:
+            out.wi = -e.normal;
+            out.distance = std::numeric_limits<float>::infinity();
+            out.lightPoint = p;
+            out.pdf = 0.0f;
+            out.contribution = e.emitted * (1.0f / pmf);
+            return true;
+        case Kind::Area:
+        case Kind::Triangle: {
+            glm::vec3 y;
+            if (e.kind == Kind::Area) {
+                y = e.position + u1 * e.edge1 + u2 * e.edge2;
+            } else {
+                const glm::vec2 b = uniformTriangle(u1, u2);
+                y = e.position + b.x * e.edge1 + b.y * e.edge2;
+            }
+            const glm::vec3 toLight = y - p;
+            const float d2 = glm::dot(toLight, toLight);
+            if (!(d2 > 0.0f)) return false;
+            const float d = std::sqrt(d2);
+            out.wi = toLight * (1.0f / d);
+            float cosLight = -glm::dot(out.wi, e.normal);
+            const bool front = cosLight > 0.0f;
+            if (!front) {
+                if (!e.twoSided) return false;
+                cosLight = -cosLight;
+            }
+            if (!(cosLight > 0.0f)) return false;
+            out.distance = d;
+            out.lightPoint = offsetRayOrigin(y, front ? e.normal : -e.normal);
+            out.pdf = pmf * d2 / (e.area * cosLight);
+            out.contribution = e.emitted * (1.0f / out.pdf);
+            return true;
+        }
+    }
+    return false;
+}
+
+inline float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept {
+    uint32_t index = m_entryOfGeometry[geomId];
+    if (index == kNoIndex || m_entries.empty()) return 0.0f;
+    if (m_entries[index].kind == Kind::Triangle) index += primId;
+    const Entry& e = m_entries[index];
+    if (!(cosLight > 0.0f) || !(e.area > 0.0f)) return 0.0f;
+    return e.pmf * distance * distance / (e.area * cosLight);
+}
+
+}  // namespace bounce

@@ -1,0 +1,482 @@
+#include "reference/PathTracer.h"
+
+#include "core/ImageIo.h"
+#include "core/Log.h"
+#include "reference/Bsdf.h"
+#include "reference/Sampling.h"
+#include "reference/TextureLookup.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace bounce {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Russian roulette starts once a path has reflected this many times: direct light and the first
+// indirect bounce are always sampled in full, which keeps the low-order light (most of the image in
+// typical scenes) free of roulette noise.
+constexpr int kRouletteStartReflections = 2;
+
+// Unbounded paths still stop after this many reflections, so that an albedo of 1 (where roulette
+// never fires) cannot loop forever. The light lost is rho^1024 of the total: 3e-5 at rho = 0.99.
+constexpr int kMaxUnboundedReflections = 1024;
+
+// A camera ray that enters a one-sided surface from behind passes through it, as the GPU's
+// back-face culling lets it; this bounds how many such surfaces one camera ray may cross.
+constexpr int kMaxCulledCrossings = 64;
+
+// Tiles are the unit of parallel work: 16 x 16 pixels keeps one tile's accumulators in L1 and gives
+// 1024 tiles for a 512^2 image, plenty to balance two to a few dozen threads.
+constexpr int kTileSize = 16;
+
+// Each pass renders at least this many paths: enough that per-pass costs (scheduling, and fetching
+// every pixel's sums from memory) vanish, few enough that a 512^2 image reports progress and checks
+// the time limit every 4 samples per pixel (about half a second).
+constexpr uint64_t kMinPathsPerPass = 1u << 20;
+
+// Camera rays go to Embree as packets of 4 x 4 pixels (rtcIntersect16): neighbouring primary rays
+// traverse the same BVH nodes, which makes them about twice as cheap as single rays.
+constexpr int kPacketSide = 4;
+constexpr int kPacketSize = kPacketSide * kPacketSide;
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+RTCRayHit makeRayHit(glm::vec3 origin, glm::vec3 direction, float tMax) {
+    RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = tMax;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
+RTCRay makeShadowRay(glm::vec3 origin, glm::vec3 direction, float tMax) {
+    RTCRay r;
+    r.org_x = origin.x;
+    r.org_y = origin.y;
+    r.org_z = origin.z;
+    r.tnear = 0.0f;
+    r.dir_x = direction.x;
+    r.dir_y = direction.y;
+    r.dir_z = direction.z;
+    r.time = 0.0f;
+    r.tfar = tMax;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
+}  // namespace
+
+struct PathTracer::Counters {
+    uint64_t rays = 0;
+    uint64_t shadowRays = 0;
+    uint64_t invalidSamples = 0;
+};
+
+// One pixel's sums over samples, in double so that 10^5 samples add up without losing the small
+// ones; together in one struct so that a pixel's sums share a cache line.
+struct PathTracer::PixelSums {
+    glm::dvec3 radiance{0.0};
+    double lum = 0.0;
+    double lum2 = 0.0;
+};
+
+Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSettings& settings) {
+    if (settings.width <= 0 || settings.height <= 0)
+        return makeError("image size {}x{}: width and height must be positive", settings.width, settings.height);
+    if (settings.samplesPerPixel == 0) return makeError("spp 0: at least one sample per pixel is needed");
+    if (settings.bounces < PathTracerSettings::kUnbounded || settings.bounces >= kMaxUnboundedReflections)
+        return makeError("bounces {}: must be between 0 and {} (or unbounded)", settings.bounces,
+                         kMaxUnboundedReflections - 1);
+    if (settings.threads < 0) return makeError("threads {}: must be 0 (all) or more", settings.threads);
+    if (!(settings.timeLimitSeconds >= 0.0) || !std::isfinite(settings.timeLimitSeconds))
+        return makeError("time limit {}: must be a finite number of seconds >= 0", settings.timeLimitSeconds);
+    for (const Material& m : scene.materials) {
+        if (m.baseColorTexture < 0) continue;
+        if (static_cast<size_t>(m.baseColorTexture) >= scene.textures.size())
+            return makeError("material '{}': texture index {} out of range ({} textures)", m.name, m.baseColorTexture,
+                             scene.textures.size());
+        const TextureImage& t = scene.textures[static_cast<size_t>(m.baseColorTexture)];
+        if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
+        BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
+    }
+
+    const float time = scene.timeOfFrame(settings.frame);
+    EmbreeSceneOptions options;
+    options.time = time;
+    options.filter = GeometryFilter::All;
+    options.includeAreaLights = true;
+    const Clock::time_point start = Clock::now();
+    // Embree builds with TBB: inside the arena the build respects the thread limit too.
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    Expected<EmbreeScene> embree = makeError("unreachable");
+    arena.execute([&] { embree = EmbreeScene::build(scene, options); });
+    if (!embree) return embree.error();
+    PathTracer tracer(scene, settings, std::move(embree).value());
+    if (tracer.m_lights.empty())
+        return makeError("scene '{}': no light source (no light with non-zero power and no object with an emissive "
+                         "material)",
+                         scene.name);
+    tracer.m_buildSeconds = secondsSince(start);
+    return tracer;
+}
+
+PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree)
+    : m_scene(&scene),
+      m_settings(settings),
+      m_time(scene.timeOfFrame(settings.frame)),
+      m_embree(std::move(embree)),
+      m_lights(scene, m_embree),
+      m_camera(scene.camera.at(m_time), settings.width, settings.height),
+      m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
+                                                                          : settings.bounces + 1) {
+    m_shading.resize(m_embree.geometries().size());
+    for (size_t i = 0; i < m_shading.size(); ++i) {
+        const SceneGeometry& g = m_embree.geometries()[i];
+        Shading& s = m_shading[i];
+        if (g.kind == SceneGeometry::Kind::AreaLight) {
+            s.emitted = scene.lights[g.lightIndex].radiance;
+            s.absorber = true;
+        } else {
+            const Material& m = scene.materials[g.materialIndex];
+            s.material = &m;
+            if (m.baseColorTexture >= 0) s.texture = &scene.textures[static_cast<size_t>(m.baseColorTexture)].image;
+            s.emitted = m.emission;
+            s.twoSided = m.twoSided;
+            s.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
+            s.lambertian = m.specularF0 == 0.0f && m.metallic == 0.0f;
+        }
+        s.emissive = maxComponent(s.emitted) > 0.0f;
+    }
+}
+
+glm::vec3 PathTracer::tracePath(Rng& rng, const CameraRay& cameraRay, const RTCHit& firstHit, float firstT,
+                                Counters& counters) const {
+    RTCScene scene = m_embree.handle();
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const bool indirectOnly = m_settings.indirectOnly;
+    const bool diffuseOnly = m_settings.diffuseOnly;
+
+    glm::vec3 radiance(0.0f);
+    glm::vec3 throughput(1.0f);
+    int reflections = 0;   // scattering events so far on this path
+    float bsdfPdf = 0.0f;  // solid-angle pdf of the BSDF sample that chose the current ray
+    int culledCrossings = 0;
+    glm::vec3 direction = cameraRay.direction;
+    float tMax = cameraRay.tMax;
+    uint32_t geomId = firstHit.geomID, primId = firstHit.primID;
+    float hitU = firstHit.u, hitV = firstHit.v, hitT = firstT;
+
+    const auto intersect = [&](glm::vec3 from) {
+        RTCRayHit rh = makeRayHit(from, direction, tMax);
+        rtcIntersect1(scene, &context, &rh);
+        ++counters.rays;
+        geomId = rh.hit.geomID;
+        primId = rh.hit.primID;
+        hitU = rh.hit.u;
+        hitV = rh.hit.v;
+        hitT = rh.ray.tfar;
+    };
+
+    while (geomId != RTC_INVALID_GEOMETRY_ID) {
+        const Shading& sh = m_shading[geomId];
+        const SurfacePoint sp = m_embree.surface(geomId, primId, hitU, hitV);
+        const float cosIn = glm::dot(direction, sp.geometricNormal);
+        const bool front = cosIn < 0.0f;
+
+        if (!front && !sh.twoSided && reflections == 0) {
+            // The rasteriser culls back faces of one-sided surfaces: the camera sees through them.
+            if (++culledCrossings > kMaxCulledCrossings) break;
+            tMax -= hitT;
+            intersect(offsetRayOrigin(sp.position, sp.geometricNormal));
+            continue;
+        }
+
+        if (sh.emissive && (front || sh.twoSided) && (!indirectOnly || reflections >= 2)) {
+            float weight = 1.0f;
+            if (reflections > 0) {
+                const float lightPdf = m_lights.pdfEmitterHit(geomId, primId, hitT, std::abs(cosIn));
+                weight = powerHeuristic(bsdfPdf, lightPdf);
+            }
+            radiance += throughput * sh.emitted * weight;
+        }
+        if (sh.absorber || !(front || sh.twoSided)) break;
+        if (reflections >= m_maxReflections) break;
+        const int vertex = reflections + 1;  // this is the path's vertex-th reflection
+
+        const glm::vec3 ng = front ? sp.geometricNormal : -sp.geometricNormal;
+        glm::vec3 ns = front ? sp.shadingNormal : -sp.shadingNormal;
+        // An interpolated normal can turn away from the viewer at silhouettes; fall back to the face.
+        if (glm::dot(ns, direction) >= 0.0f) ns = ng;
+        const Frame frame(ns);
+        const glm::vec3 texel = sh.texture ? lookupBilinearRepeat(*sh.texture, sp.uv) : glm::vec3(1.0f);
+        const glm::vec3 position = offsetRayOrigin(sp.position, ng);
+        // Pure Lambert (the built-in scenes, and every vertex after the first under --diffuse-only)
+        // takes a short path without the general BRDF.
+        const bool lambert = sh.lambertian || (diffuseOnly && vertex >= 2);
+        const glm::vec3 albedo = sh.diffuseAlbedo * texel;
+        const glm::vec3 wo = frame.toLocal(-direction);
+        const Bsdf bsdf = lambert ? Bsdf() : Bsdf(*sh.material, sh.material->baseColor * texel, false);
+
+        // Next-event estimation: one light source, one shadow ray. Under --indirect-only the first
+        // reflection's direct light is not wanted, so no ray is spent on it.
+        const float uSelect = rng.next(), uLight1 = rng.next(), uLight2 = rng.next();
+        if (!indirectOnly || vertex >= 2) {
+            LightSample ls;
+            if (m_lights.sample(sp.position, uSelect, uLight1, uLight2, ls) && glm::dot(ls.wi, ng) > 0.0f) {
+                const float cosS = glm::dot(ls.wi, ns);
+                glm::vec3 f(0.0f);
+                float pdf = 0.0f;
+                if (lambert) {
+                    if (cosS > 0.0f) {
+                        f = albedo * kInvPi;
+                        pdf = cosS * kInvPi;
+                    }
+                } else {
+                    const glm::vec3 wi = frame.toLocal(ls.wi);
+                    f = bsdf.eval(wo, wi);
+                    if (maxComponent(f) > 0.0f) pdf = bsdf.pdf(wo, wi);
+                }
+                if (maxComponent(f) > 0.0f) {
+                    const bool infinite = !std::isfinite(ls.distance);
+                    RTCRay shadow = infinite ? makeShadowRay(position, ls.wi, std::numeric_limits<float>::infinity())
+                                             : makeShadowRay(position, ls.lightPoint - position, 1.0f);
+                    rtcOccluded1(scene, &context, &shadow);
+                    ++counters.rays;
+                    ++counters.shadowRays;
+                    if (shadow.tfar >= 0.0f) {
+                        const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, pdf) : 1.0f;
+                        radiance += throughput * f * (cosS * weight) * ls.contribution;
+                    }
+                }
+            }
+        }
+
+        const float uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
+        glm::vec3 wi;
+        if (lambert) {
+            const glm::vec3 local = cosineHemisphere(u1, u2);
+            if (!(local.z > 0.0f)) break;
+            wi = frame.toWorld(local);
+            throughput *= albedo;  // (albedo / pi) cos / (cos / pi)
+            bsdfPdf = local.z * kInvPi;
+        } else {
+            Bsdf::Sample bs;
+            if (!bsdf.sample(wo, uLobe, u1, u2, bs)) break;
+            wi = frame.toWorld(bs.wi);
+            throughput *= bs.weight;
+            bsdfPdf = bs.pdf;
+        }
+        // Directions below the geometric surface would leak through it.
+        if (glm::dot(wi, ng) <= 0.0f) break;
+        reflections = vertex;
+        if (reflections >= kRouletteStartReflections) {
+            const float survive = std::min(1.0f, maxComponent(throughput));
+            if (!(rng.next() < survive)) break;
+            throughput /= survive;
+        }
+        direction = wi;
+        tMax = std::numeric_limits<float>::infinity();
+        intersect(position);
+    }
+    return radiance;
+}
+
+void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
+                            Counters& counters) const {
+    const auto width = static_cast<size_t>(m_settings.width);
+    RTCIntersectContext coherent;
+    rtcInitIntersectContext(&coherent);
+    coherent.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacketSize];  // Embree requires 64-byte alignment of the mask
+    alignas(64) RTCRayHit16 packet;
+    std::array<Rng, kPacketSize> rngs;
+    std::array<CameraRay, kPacketSize> rays;
+    std::array<size_t, kPacketSize> pixels;
+
+    for (int by = y0; by < y1; by += kPacketSide) {
+        for (int bx = x0; bx < x1; bx += kPacketSide) {
+            int lanes = 0;
+            for (int lane = 0; lane < kPacketSize; ++lane) {
+                const int x = bx + lane % kPacketSide, y = by + lane / kPacketSide;
+                const bool inside = x < x1 && y < y1;
+                valid[lane] = inside ? -1 : 0;
+                pixels[lane] = inside ? static_cast<size_t>(y) * width + static_cast<size_t>(x) : 0;
+                lanes += inside ? 1 : 0;
+            }
+            for (uint32_t s = s0; s < s1; ++s) {
+                for (int lane = 0; lane < kPacketSize; ++lane) {
+                    if (!valid[lane]) continue;
+                    const size_t pixel = pixels[lane];
+                    rngs[lane] = Rng(m_settings.seed, pixel, s);
+                    const float jx = rngs[lane].next(), jy = rngs[lane].next();
+                    const int x = bx + lane % kPacketSide, y = by + lane / kPacketSide;
+                    const CameraRay r = m_camera.generate(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
+                    rays[lane] = r;
+                    packet.ray.org_x[lane] = r.origin.x;
+                    packet.ray.org_y[lane] = r.origin.y;
+                    packet.ray.org_z[lane] = r.origin.z;
+                    packet.ray.dir_x[lane] = r.direction.x;
+                    packet.ray.dir_y[lane] = r.direction.y;
+                    packet.ray.dir_z[lane] = r.direction.z;
+                    packet.ray.tnear[lane] = 0.0f;
+                    packet.ray.tfar[lane] = r.tMax;
+                    packet.ray.time[lane] = 0.0f;
+                    packet.ray.mask[lane] = 0xffffffffu;
+                    packet.ray.id[lane] = 0;
+                    packet.ray.flags[lane] = 0;
+                    packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+                    packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect16(valid, m_embree.handle(), &coherent, &packet);
+                counters.rays += static_cast<uint64_t>(lanes);
+                for (int lane = 0; lane < kPacketSize; ++lane) {
+                    if (!valid[lane]) continue;
+                    RTCHit hit;
+                    hit.geomID = packet.hit.geomID[lane];
+                    hit.primID = packet.hit.primID[lane];
+                    hit.u = packet.hit.u[lane];
+                    hit.v = packet.hit.v[lane];
+                    glm::vec3 L = tracePath(rngs[lane], rays[lane], hit, packet.ray.tfar[lane], counters);
+                    if (!finite(L)) {
+                        ++counters.invalidSamples;
+                        L = glm::vec3(0.0f);
+                    }
+                    // Samples reach each pixel in increasing s whatever the thread: the sums are
+                    // bit-identical for any thread count.
+                    PixelSums& p = sums[pixels[lane]];
+                    const double y = luminance(L);
+                    p.radiance += glm::dvec3(L);
+                    p.lum += y;
+                    p.lum2 += y * y;
+                }
+            }
+        }
+    }
+}
+
+PathTracerResult PathTracer::render(const ProgressCallback& progress) const {
+    const int width = m_settings.width, height = m_settings.height;
+    const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+    std::vector<PixelSums> sums(pixels);
+
+    const uint32_t target = m_settings.samplesPerPixel;
+    const auto perPass = static_cast<uint32_t>(
+        std::clamp<uint64_t>((kMinPathsPerPass + pixels - 1) / pixels, 1, target));
+    const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+
+    tbb::task_arena arena(m_settings.threads > 0 ? m_settings.threads : tbb::task_arena::automatic);
+    PathTracerResult result;
+    const bool limited = m_settings.timeLimitSeconds > 0.0;
+    const Clock::time_point start = Clock::now();
+    const Clock::time_point deadline =
+        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_settings.timeLimitSeconds));
+    // With a time limit, a pass that cannot finish in time is abandoned and its partial sums
+    // replaced by this copy, so the image holds complete passes only.
+    std::vector<PixelSums> before;
+    uint32_t done = 0;
+    while (done < target) {
+        const uint32_t s0 = done, s1 = std::min(target, done + perPass);
+        // The first pass always completes, so there is an image however small the budget.
+        const bool cancellable = limited && done > 0;
+        if (cancellable) before = sums;
+        std::atomic<bool> cancelled{false};
+        std::atomic<uint64_t> rays{0}, shadowRays{0}, invalid{0};
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1),
+                              [&](const tbb::blocked_range2d<int>& r) {
+                                  Counters local;
+                                  for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
+                                      for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                                          if (cancellable && (cancelled.load(std::memory_order_relaxed) ||
+                                                              Clock::now() > deadline)) {
+                                              cancelled = true;
+                                              return;
+                                          }
+                                          renderTile(tx * kTileSize, ty * kTileSize,
+                                                     std::min(width, (tx + 1) * kTileSize),
+                                                     std::min(height, (ty + 1) * kTileSize), s0, s1, sums.data(),
+                                                     local);
+                                      }
+                                  rays += local.rays;
+                                  shadowRays += local.shadowRays;
+                                  invalid += local.invalidSamples;
+                              });
+        });
+        if (cancelled || (cancellable && Clock::now() > deadline)) {
+            sums.swap(before);
+            result.stoppedByTimeLimit = true;
+            break;
+        }
+        done = s1;
+        result.rays += rays;
+        result.shadowRays += shadowRays;
+        result.invalidSamples += invalid;
+        if (progress) progress(RenderProgress{done, target, secondsSince(start)});
+        if (limited && done < target && Clock::now() >= deadline) {
+            result.stoppedByTimeLimit = true;
+            break;
+        }
+    }
+    result.renderSeconds = secondsSince(start);
+    result.buildSeconds = m_buildSeconds;
+    result.samplesPerPixel = done;
+    result.paths = static_cast<uint64_t>(pixels) * done;
+    if (result.invalidSamples > 0)
+        spdlog::warn("reference: {} non-finite samples were dropped", result.invalidSamples);
+
+    result.radiance = Image(width, height);
+    const double n = static_cast<double>(done);
+    double relSum = 0.0, varOfMeanSum = 0.0, meanSum = 0.0;
+    uint64_t measured = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        const PixelSums& p = sums[i];
+        result.radiance.data()[i] = glm::vec3(p.radiance / n);
+        const double mean = p.lum / n;
+        // Unbiased sample variance of the per-sample luminance; needs two samples.
+        const double variance = done > 1 ? std::max(0.0, (p.lum2 - n * mean * mean) / (n - 1.0)) : 0.0;
+        const double varOfMean = variance / n;
+        meanSum += mean;
+        varOfMeanSum += varOfMean;
+        if (mean > 0.0) {
+            relSum += std::sqrt(varOfMean) / mean;
+            ++measured;
+        }
+    }
+    result.noise.pixelsMeasured = measured;
+    result.noise.meanPixelRelativeError = measured > 0 ? relSum / static_cast<double>(measured) : 0.0;
+    // The image mean is (1/P) sum of pixel means; its variance is (1/P^2) sum of their variances.
+    result.noise.imageRelativeError = meanSum > 0.0 ? std::sqrt(varOfMeanSum) / meanSum : 0.0;
+    return result;
+}
+
+}  // namespace bounce

@@ -1,0 +1,124 @@
+#pragma once
+// bounce's ground truth: a CPU path tracer (Embree 3 + TBB) over the same Scene the GPU techniques
+// render. See docs/reference.md for the light-transport scopes, the sampling, the determinism
+// guarantees and the noise estimate.
+//
+// Unidirectional path tracing with next-event estimation. Emitting surfaces (rectangular area
+// lights, triangles of emissive materials) are reached both by light sampling and by BSDF sampling,
+// combined by multiple importance sampling with the power heuristic; point, spot and directional
+// lights are delta lights, reached by light sampling only. Paths end by Russian roulette, at the
+// reflection limit of the chosen scope, on a miss (no environment light), or on an absorbing
+// surface (the back of a one-sided surface, an area light's rectangle).
+#include "core/Error.h"
+#include "core/Image.h"
+#include "reference/CameraRays.h"
+#include "reference/EmbreeScene.h"
+#include "reference/LightSampler.h"
+#include "reference/Rng.h"
+#include "scene/Scene.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace bounce {
+
+struct PathTracerSettings {
+    int width = 512;   // pixels
+    int height = 512;  // pixels
+    uint32_t samplesPerPixel = 64;
+    // Indirect bounces K: a path reflects at most K+1 times (direct light is one reflection).
+    // kUnbounded: Russian roulette ends paths (with a safety cap of 1024 reflections).
+    int bounces = kUnbounded;
+    bool indirectOnly = false;  // keep only light that reflected at least twice (full minus direct)
+    bool diffuseOnly = false;   // BRDF = Lambert lobe alone at every vertex after the first
+    uint64_t seed = 0;
+    // 0: no limit. Otherwise the image holds the passes that completed within the limit: a pass
+    // still running at the deadline is abandoned (the first pass always completes).
+    double timeLimitSeconds = 0.0;
+    int threads = 0;                // 0: every hardware thread
+    uint32_t frame = 0;             // render the scene at time scene.timeOfFrame(frame)
+
+    static constexpr int kUnbounded = -1;
+};
+
+struct RenderProgress {
+    uint32_t samplesDone = 0;    // per pixel, complete passes only
+    uint32_t samplesTarget = 0;  // settings.samplesPerPixel
+    double elapsedSeconds = 0.0;
+};
+// Called after every pass, on the calling thread.
+using ProgressCallback = std::function<void(const RenderProgress&)>;
+
+// How much noise is left, from per-pixel sums of the luminance Y and Y^2 over the n samples.
+struct NoiseEstimate {
+    // Mean over pixels of sem(Y)/mean(Y), sem = sqrt(sampleVariance / n); pixels with mean 0 are skipped.
+    double meanPixelRelativeError = 0.0;
+    // Standard error of the whole image's mean luminance, relative to that mean.
+    double imageRelativeError = 0.0;
+    uint64_t pixelsMeasured = 0;  // pixels with non-zero mean that entered the first figure
+};
+
+struct PathTracerResult {
+    Image radiance;                   // linear RGB, W/(m^2 sr)
+    uint32_t samplesPerPixel = 0;     // reached (less than asked when the time limit stopped it)
+    bool stoppedByTimeLimit = false;
+    double buildSeconds = 0.0;        // BVH and light list
+    double renderSeconds = 0.0;       // tracing only, including an abandoned pass
+    uint64_t paths = 0;               // camera paths = pixels * samplesPerPixel
+    uint64_t rays = 0;                // rays given to Embree for the kept passes: camera, continuation, shadow
+    uint64_t shadowRays = 0;
+    uint64_t invalidSamples = 0;      // non-finite samples dropped (0 unless there is a bug)
+    NoiseEstimate noise;
+
+    double pathsPerSecond() const { return renderSeconds > 0.0 ? static_cast<double>(paths) / renderSeconds : 0.0; }
+    double raysPerSecond() const { return renderSeconds > 0.0 ? static_cast<double>(rays) / renderSeconds : 0.0; }
+};
+
+class PathTracer {
+public:
+    // Checks the settings and the scene (a light source must exist, textures must be finite) and
+    // builds the BVH and the light list at the frame's time. `scene` must outlive the tracer.
+    static Expected<PathTracer> create(const Scene& scene, const PathTracerSettings& settings);
+
+    PathTracerResult render(const ProgressCallback& progress = {}) const;
+
+    const PathTracerSettings& settings() const noexcept { return m_settings; }
+    float time() const noexcept { return m_time; }
+
+    // Per Embree geometry, what shading needs, gathered once so the inner loop does no lookups.
+    struct Shading {
+        const Material* material = nullptr;  // null for area lights
+        const Image* texture = nullptr;      // base-colour texture, or null
+        glm::vec3 emitted{0.0f};             // radiance of the front side (both sides if twoSided)
+        glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
+        bool emissive = false;
+        bool twoSided = false;
+        bool absorber = false;    // area-light rectangles: emit, never reflect
+        bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
+    };
+
+private:
+    struct Counters;
+    struct PixelSums;
+    PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree);
+    void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
+                    Counters& counters) const;
+    // Continues a camera path whose first intersection (geomId, or RTC_INVALID_GEOMETRY_ID for a
+    // miss) the packet tracer already found.
+    glm::vec3 tracePath(Rng& rng, const CameraRay& ray, const RTCHit& firstHit, float firstT,
+                        Counters& counters) const;
+
+    const Scene* m_scene;
+    PathTracerSettings m_settings;
+    float m_time;
+    EmbreeScene m_embree;
+    LightSampler m_lights;
+    CameraRays m_camera;
+    std::vector<Shading> m_shading;
+    int m_maxReflections;
+    double m_buildSeconds = 0.0;
+};
+
+}  // namespace bounce
