@@ -113,3 +113,28 @@ TEST_F(RsmGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
         }
     }
 }
+
+TEST_F(RsmGpuTest, EqualSolidAngleApproximationMatchesItsClosedForm) {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 1.0f, 0.0f};
+    spot.intensity = glm::vec3(10.0f);
+    spot.cutoffAngle = glm::radians(30.0f);
+    spot.falloffExponent = 0.0f;
+    const Scene scene = planeScene(spot);
+    auto exact = makePipeline(scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "16"}}, 16);
+    auto equal = makePipeline(scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "16"}, {"equalSolidAngle", "true"}}, 16);
+    exact->renderFrame(0);
+    equal->renderFrame(0);
+    const float exactFlux = dynamic_cast<RsmTechnique&>(exact->technique()).rsm().totalFlux().r;
+    const float equalFlux = dynamic_cast<RsmTechnique&>(equal->technique()).rsm().totalFlux().r;
+    // Exact: rho * I * 2 pi (1 - cos a) (n = 0). Eq. 4.4 gives each texel the frustum's mean solid angle
+    // 4 asin(sin^2 a) / N^2, and the cone covers pi/4 of the frustum's texels (a disc inscribed in the
+    // square): rho * I * pi asin(sin^2 a), 6 % below the exact value at a = 30 degrees.
+    const float a = spot.cutoffAngle;
+    const float exactExpected = kPlaneAlbedo * 10.0f * glm::two_pi<float>() * (1.0f - std::cos(a));
+    const float equalExpected = kPlaneAlbedo * 10.0f * glm::pi<float>() * std::asin(std::sin(a) * std::sin(a));
+    // 2 %: rim texels counted whole (about 400 of 128^2).
+    EXPECT_NEAR(exactFlux, exactExpected, 0.02f * exactExpected);
+    EXPECT_NEAR(equalFlux, equalExpected, 0.02f * equalExpected);
+}

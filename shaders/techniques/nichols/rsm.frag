@@ -4,7 +4,7 @@
 // of §4.2.1.2 in place of Eq. 4.4); directional lights: Phi_t = E * texelArea * rho. Patch area
 // A_t = dOmega_t * d^2 / cos(theta_surface) (Eq. 4.3 with the receiver's obliquity).
 // Host uniforms: u_projection (0 perspective, 1 orthographic), u_texelArea (unit-distance plane, or m^2),
-// u_axis (view axis, world). Inputs: render/scene.vert outputs, u_light (BINDING_UBO_LIGHT).
+// u_axis (view axis, world), u_equalSolidAngle (sr per texel under Eq. 4.4's approximation, 0 = exact). Inputs: render/scene.vert outputs, u_light (BINDING_UBO_LIGHT).
 // Outputs: 0 position (xyz, w light distance), 1 normal (xyz, w patch area m^2), 2 flux (rgb W, a covered).
 #include "common/scene.glsl"
 #include "techniques/nichols/light.glsl"
@@ -13,6 +13,7 @@ layout(std140, binding = BINDING_UBO_LIGHT) uniform LightBlock { LightGpu u_ligh
 uniform int u_projection;
 uniform float u_texelArea;
 uniform vec3 u_axis;
+uniform float u_equalSolidAngle;
 
 in vec3 v_posWorld;
 in vec3 v_normalWorld;
@@ -58,7 +59,7 @@ void main() {
         area = u_texelArea / max(cosSurface, kMinAreaCosine);
     } else {
         float c = max(dot(dir, normalize(u_axis)), 0.0);
-        float solidAngle = u_texelArea * c * c * c;
+        float solidAngle = u_equalSolidAngle > 0.0 ? u_equalSolidAngle : u_texelArea * c * c * c;
         flux = lightIntensity(u_light, dir) * solidAngle * albedo;
         area = solidAngle * distance * distance / max(cosSurface, kMinAreaCosine);
     }

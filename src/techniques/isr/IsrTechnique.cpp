@@ -34,6 +34,7 @@ constexpr int kLocalSize = 8;  // clusters.comp local size
 }
 
 void IsrTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("equalSolidAngle", m_equalSolidAngle, "Eq. 4.4: every RSM texel gets the frustum's solid angle / texels (thesis); off = exact per-texel solid angle");
     v.field("rsmSize", m_rsmSize, "RSM resolution per side (thesis 256)", 8, 2048);
     v.field("vplMode", m_vplMode, "clusters: multiresolution light-space patches (§4.2.2); regular: fixed VPL grid (Table 4.1)", kVplModes);
     v.field("vplGrid", m_vplGrid, "regular mode: VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
@@ -67,7 +68,7 @@ Expected<void> IsrTechnique::setup(const SetupContext&) {
 void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     {
         auto s = ctx.timers.scope("rsm");
-        if (!m_rsm->render(ctx, m_rsmSize)) {
+        if (!m_rsm->render(ctx, m_rsmSize, m_equalSolidAngle)) {
             const float zero[4] = {0, 0, 0, 0};
             m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
             glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);

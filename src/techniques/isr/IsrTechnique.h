@@ -26,6 +26,7 @@ public:
     static constexpr std::array<std::string_view, 2> kVplModes{"clusters", "regular"};
 
 private:
+    bool m_equalSolidAngle = false;  // Eq. 4.4 approximation off: exact texel solid angles
     int m_rsmSize = 256;            // §4.2.1.2
     std::string m_vplMode{"clusters"};
     int m_vplGrid = 16;             // regular mode: 16^2 = 256 VPLs (Table 4.1)

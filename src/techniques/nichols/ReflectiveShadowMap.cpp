@@ -20,6 +20,7 @@ constexpr float kMaxPerspectiveCutoff = 1.0471976f;  // radians (60 degrees)
 constexpr float kNearFraction = 1e-3f;
 // Projection kinds of rsm.frag (u_projection).
 constexpr int kPerspective = 0, kOrthographic = 1;
+constexpr float kFourPi = 12.566371f;  // sr, the full sphere (a cube face spans a sixth of it)
 
 glm::vec3 anyPerpendicular(glm::vec3 d) {
     return std::abs(d.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
@@ -36,7 +37,7 @@ Expected<ReflectiveShadowMap> ReflectiveShadowMap::create() {
     return r;
 }
 
-bool ReflectiveShadowMap::render(FrameContext& ctx, int size) {
+bool ReflectiveShadowMap::render(FrameContext& ctx, int size, bool equalSolidAngle) {
     const std::vector<Light>& lights = ctx.sceneGpu.lights();
     m_valid = false;
     if (lights.empty() || ctx.lights.count() == 0) return false;
@@ -87,6 +88,7 @@ bool ReflectiveShadowMap::render(FrameContext& ctx, int size) {
             view.farPlane = 3.0f * radius;
             view.viewport = {size, size};
             m_program.set("u_projection", kOrthographic);
+            m_program.set("u_equalSolidAngle", 0.0f);  // parallel light: texel areas are equal already
             m_program.set("u_texelArea", (2.0f * radius / size) * (2.0f * radius / size));
             m_program.set("u_axis", d);
         } else if (single) {
@@ -101,12 +103,16 @@ bool ReflectiveShadowMap::render(FrameContext& ctx, int size) {
             m_program.set("u_projection", kPerspective);
             m_program.set("u_texelArea", texel * texel);
             m_program.set("u_axis", d);
+            // Solid angle of a square frustum of half-angle a: 4 asin(sin^2 a) (Eq. 4.4's omega_frustum).
+            const float s = std::sin(light.cutoffAngle);
+            m_program.set("u_equalSolidAngle", equalSolidAngle ? 4.0f * std::asin(s * s) / (size * size) : 0.0f);
         } else {
             view = render::cubeFaceView(light.position, layer, nearPlane, farPlane, size);
             const float texel = 2.0f / size;  // a 90-degree face spans [-1, 1] at unit distance
             m_program.set("u_projection", kPerspective);
             m_program.set("u_texelArea", texel * texel);
             m_program.set("u_axis", -glm::vec3(glm::transpose(view.viewFromWorld)[2]));
+            m_program.set("u_equalSolidAngle", equalSolidAngle ? kFourPi / 6.0f / (size * size) : 0.0f);
         }
         m_fbo.attachLayer(GL_COLOR_ATTACHMENT0, m_position, layer);
         m_fbo.attachLayer(GL_COLOR_ATTACHMENT1, m_normal, layer);

@@ -20,8 +20,9 @@ public:
     static Expected<ReflectiveShadowMap> create();
 
     // Renders the map of light 0 at `size` x `size` texels per layer. Returns false (and leaves the
-    // map empty) when the scene has no light.
-    bool render(FrameContext& ctx, int size);
+    // map empty) when the scene has no light. equalSolidAngle: Eq. 4.4's approximation (every texel
+    // gets the frustum's solid angle / size^2) instead of each texel's exact solid angle.
+    bool render(FrameContext& ctx, int size, bool equalSolidAngle = false);
 
     bool valid() const { return m_valid; }
     int size() const { return m_size; }

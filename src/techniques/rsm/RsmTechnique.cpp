@@ -20,6 +20,7 @@
 namespace bounce {
 
 void RsmTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("equalSolidAngle", m_equalSolidAngle, "Eq. 4.4: every RSM texel gets the frustum's solid angle / texels (thesis); off = exact per-texel solid angle");
     v.field("rsmSize", m_rsmSize, "RSM resolution per side (per cube face for point/area lights); thesis 256, 1024 for the reference", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (must divide rsmSize); thesis 16..128, = rsmSize for the converged limit", 1, 2048);
     v.field("formFactor", m_formFactor, "disk: Eq. 4.1 disk-to-point form factor; point: Eq. 3.2 with an r^2 clamp", kFormFactors);
@@ -44,7 +45,7 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     BOUNCE_CHECK(m_fbo.complete(), "rsm framebuffer");
     {
         auto s = ctx.timers.scope("rsm");
-        if (!m_rsm->render(ctx, m_rsmSize)) {
+        if (!m_rsm->render(ctx, m_rsmSize, m_equalSolidAngle)) {
             glClearNamedFramebufferfv(m_fbo.id(), GL_COLOR, 0, zero);
             ctx.counters["vpls"] = 0.0;
             return;

@@ -23,6 +23,7 @@ public:
     static constexpr std::array<std::string_view, 2> kFormFactors{"disk", "point"};
 
 private:
+    bool m_equalSolidAngle = false;  // Eq. 4.4 approximation off: exact texel solid angles
     int m_rsmSize = 256;      // thesis §4.2.1.2: 256^2 RSM
     int m_vplGrid = 16;       // 16^2 = 256 VPLs (Table 4.1)
     std::string m_formFactor{"disk"};
