@@ -39,6 +39,12 @@
 #define BINDING_IMG1 1
 #define BINDING_IMG2 2
 #define BINDING_IMG3 3
+#define BINDING_IMG4 4  // min-max pyramids (techniques/nichols) read five and write five images
+#define BINDING_IMG5 5
+#define BINDING_IMG6 6
+#define BINDING_IMG7 7
+#define BINDING_IMG8 8
+#define BINDING_IMG9 9
 
 // Vertex attribute locations
 #define ATTR_POSITION 0

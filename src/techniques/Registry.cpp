@@ -3,6 +3,11 @@
 #include "techniques/ambient/AmbientTechnique.h"
 #include "techniques/direct/DirectTechnique.h"
 #include "techniques/iir/IirTechnique.h"
+#include "techniques/hisr/HisrTechnique.h"
+#include "techniques/isr/IsrTechnique.h"
+#include "techniques/multires_splat/MultiresSplatTechnique.h"
+#include "techniques/rsm/RsmTechnique.h"
+#include "techniques/rsm_splat/RsmSplatTechnique.h"
 
 #include <fmt/ranges.h>
 
@@ -14,6 +19,11 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         {"ambient", "direct light plus a constant ambient term", "baseline", [] { return std::make_unique<AmbientTechnique>(); }},
         {"iir", "incremental instant radiosity: incrementally maintained VPLs, paraboloid shadow maps, interleaved sampling",
          "Laine et al. 2007", [] { return std::make_unique<IirTechnique>(); }},
+        {"rsm", "reflective shadow map: every pixel gathers every VPL (Nichols 2010 baseline)", "Nichols 2010 thesis; Dachsbacher & Stamminger 2005", [] { return std::make_unique<RsmTechnique>(); }},
+        {"rsm-splat", "reflective shadow map splatting: full-screen, fixed-radius or fragment-matched splats (Nichols 2010 baseline)", "Dachsbacher & Stamminger 2005; Nichols 2010 thesis fig. 4.8", [] { return std::make_unique<RsmSplatTechnique>(); }},
+        {"isr", "image-space radiosity: stencilled multiresolution gather, light-space VPL clusters (Nichols 2010 ch. 4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<IsrTechnique>(); }},
+        {"multires-splat", "multiresolution splatting: subsplat refinement by geometry shader + transform feedback (Nichols 2010 ch. 3)", "Nichols 2010 thesis ch. 3; Nichols & Wyman, I3D 2009", [] { return std::make_unique<MultiresSplatTechnique>(); }},
+        {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;
 }

@@ -1,0 +1,83 @@
+// Hierarchical image-space radiosity gather (Nichols 2010 §4.2.4, checklist item 14): every stencilled
+// fragment of the multiresolution atlas walks the VPL tree (the light-space min-max pyramid over the
+// RSM) from its 16^2 roots, refining a node j while Eq. 4.8 holds,
+//   ||V_ij||^2 <= T_l ||V_j||^2,   T_l = 2 (1 - tau) / (3 tau res_l^2),
+// with ||V_j|| the node's maximum light distance (max-mipmap, §4.2.4.1), at most u_maxDepth levels
+// below the roots, and gathers each accepted node as a VPL (mean position and normal, summed flux and
+// area) with the disk-to-point form factor (Eqs. 4.1, 4.5). The light intensity I of Eq. 4.8 is taken
+// as 1 (the thesis's normalised colours) and res_l is the node's level resolution (its solid angle).
+// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers.
+// Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), light pyramid geometry/normal/normalMax/flux
+// (BINDING_TEX_INPUT0..3). Outputs: atlas irradiance (alpha 1); u_nodes counts visited nodes.
+#include "techniques/nichols/atlas.glsl"
+#include "techniques/nichols/vpl.glsl"
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
+layout(binding = BINDING_TEX_INPUT0) uniform sampler2DArray s_lightGeometry;
+layout(binding = BINDING_TEX_INPUT1) uniform sampler2DArray s_lightNormal;
+layout(binding = BINDING_TEX_INPUT2) uniform sampler2DArray s_lightNormalMax;
+layout(binding = BINDING_TEX_INPUT3) uniform sampler2DArray s_lightFlux;
+layout(std430, binding = BINDING_SSBO_TECH0) buffer NodeCountBlock { uint u_nodes; };
+uniform int u_rootLevel;
+uniform int u_maxDepth;
+uniform float u_tau;
+uniform int u_layers;
+layout(location = 0) out vec4 o_irradiance;
+
+vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n) {
+    vec4 g = texelFetch(s_lightGeometry, node, level);
+    vec4 f = texelFetch(s_lightFlux, node, level);
+    if (g.w <= 0.0) return vec3(0.0);
+    Vpl v;
+    v.position = vec4(g.xyz / g.w, 1.0);
+    v.normal = vec4(normalize(texelFetch(s_lightNormal, node, level).xyz + vec3(0.0, 0.0, 1e-12)), f.w);
+    v.flux = vec4(f.rgb, g.w);
+    return vplIrradiance(v, x, n, true, 0.0);
+}
+
+void main() {
+    ivec3 cell = ivec3(ivec2(gl_FragCoord.xy) - u_levelOrigin, 0);
+    vec4 g = texelFetch(s_geometry, cell, u_level);
+    vec3 x = g.xyz / g.w;
+    vec3 n = normalize(texelFetch(s_normal, cell, u_level).xyz + vec3(0.0, 0.0, 1e-12));
+    vec3 irradiance = vec3(0.0);
+    uint visited = 0u;
+    ivec2 roots = textureSize(s_lightGeometry, u_rootLevel).xy;
+    int finest = max(u_rootLevel - u_maxDepth, 0);
+    // Stackless depth-first walk of each root's quadtree (RSM sizes are powers of two): descend to the
+    // first child on refinement, otherwise move to the next sibling, climbing while on a last child.
+    for (int layer = 0; layer < u_layers; ++layer)
+        for (int ry = 0; ry < roots.y; ++ry)
+            for (int rx = 0; rx < roots.x; ++rx) {
+                ivec2 cellXY = ivec2(rx, ry);
+                int level = u_rootLevel;
+                while (true) {
+                    ivec3 node = ivec3(cellXY, layer);
+                    ++visited;
+                    vec4 ng = texelFetch(s_lightGeometry, node, level);
+                    bool refine = false;
+                    if (ng.w > 0.0 && level > finest) {
+                        float res = float(textureSize(s_lightGeometry, level).x);
+                        float t = 2.0 * (1.0 - u_tau) / (3.0 * u_tau * res * res);
+                        float lightDistance = texelFetch(s_lightNormalMax, node, level).w;
+                        vec3 d = ng.xyz / ng.w - x;
+                        refine = dot(d, d) <= t * lightDistance * lightDistance;
+                    }
+                    if (refine) {
+                        cellXY *= 2;
+                        level -= 1;
+                        continue;
+                    }
+                    if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n);
+                    while (level < u_rootLevel && (cellXY.x & 1) == 1 && (cellXY.y & 1) == 1) {
+                        cellXY /= 2;
+                        level += 1;
+                    }
+                    if (level == u_rootLevel) break;
+                    if ((cellXY.x & 1) == 0) cellXY.x += 1;
+                    else cellXY += ivec2(-1, 1);
+                }
+            }
+    atomicAdd(u_nodes, visited);
+    o_irradiance = vec4(irradiance, 1.0);
+}

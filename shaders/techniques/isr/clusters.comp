@@ -1,0 +1,51 @@
+// Multiresolution VPL clusters of basic image-space radiosity (Nichols 2010 §4.2.2, checklist item
+// 13): one invocation per cell of the finest light level f (a dense sampling of the RSM); each finds
+// the level k >= f at which its light-space patch is valid (no refinement at k, refined parent, as
+// the eye-space stencil rule), and only the first cell of each valid patch writes one VPL: the
+// patch's mean position and normal, summed flux and area (so omega_j grows with the patch, Eqs.
+// 4.2-4.3). Appends to the VPL cache with an atomic counter.
+// Host uniforms: u_finest (level f), u_coarsest. Inputs: light pyramid (BINDING_TEX_TECH0..3).
+// Outputs: Vpl[] (BINDING_SSBO_TECH0), count (BINDING_SSBO_TECH1).
+#include "techniques/nichols/vpl.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
+layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_flux;
+layout(binding = BINDING_TEX_TECH3) uniform sampler2DArray s_refine;
+layout(std430, binding = BINDING_SSBO_TECH0) writeonly buffer VplBlock { Vpl u_vpls[]; };
+layout(std430, binding = BINDING_SSBO_TECH1) buffer VplCountBlock { uint u_vplCount; };
+uniform int u_finest;
+uniform int u_coarsest;
+
+bool refined(ivec2 cell, int level, int layer) {
+    return texelFetch(s_refine, ivec3(cell, layer), level).r > 0.5;
+}
+
+void main() {
+    ivec3 id = ivec3(gl_GlobalInvocationID.xyz);
+    ivec2 size = textureSize(s_geometry, u_finest).xy;
+    if (any(greaterThanEqual(id.xy, size))) return;
+    ivec2 cell = id.xy;
+    int level = u_finest;
+    // Walk up while the parent is not refined: the valid level is the coarsest unrefined ancestor.
+    while (level < u_coarsest) {
+        ivec2 parentSize = textureSize(s_geometry, level + 1).xy;
+        ivec2 parent = min(cell / 2, parentSize - 1);
+        if (refined(parent, level + 1, id.z)) break;
+        cell = parent;
+        level += 1;
+    }
+    // The first fine cell under the patch writes it (odd-sized levels give the last cell 3 children).
+    ivec2 first = cell;
+    for (int k = level; k > u_finest; --k) first *= 2;
+    if (first != id.xy) return;
+    vec4 g = texelFetch(s_geometry, ivec3(cell, id.z), level);
+    vec4 f = texelFetch(s_flux, ivec3(cell, id.z), level);
+    if (g.w <= 0.0 || max(f.r, max(f.g, f.b)) <= 0.0) return;
+    Vpl v;
+    v.position = vec4(g.xyz / g.w, 1.0);
+    v.normal = vec4(normalize(texelFetch(s_normal, ivec3(cell, id.z), level).xyz + vec3(0.0, 0.0, 1e-12)), f.w);
+    v.flux = vec4(f.rgb, g.w);
+    uint index = atomicAdd(u_vplCount, 1u);
+    u_vpls[index] = v;
+}

@@ -1,0 +1,31 @@
+// Stencilled multiresolution gather (Nichols 2010 §4.2.1.2, checklist item 12): a fragment of level
+// k that passed the stencil set-up represents the eye-space patch of its cell (mean position and
+// normal of the covered pixels below it, an assumption: the thesis does not say) and sums every VPL
+// of the cache with the disk-to-point form factor (Eq. 4.1) and Eq. 4.5:
+//   E_i = sum_j Phi_j <N_i, V_ij> <N_j, V_ji> / (pi ||V_ij||^2 + A_j)
+// where Phi_j = rho_j I omega_j (Eqs. 4.2-4.4 with the exact texel solid angle). The atlas stores the
+// irradiance E_i (W/m^2, alpha 1 = rendered here); the pixel's own albedo multiplies it at the end,
+// which keeps texture detail under coarse patches.
+// Host uniforms: u_level, u_levelOrigin. Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), Vpl[] and
+// the VPL count (BINDING_SSBO_TECH0, TECH1). Output: atlas RGBA32F.
+#include "techniques/nichols/atlas.glsl"
+#include "techniques/nichols/vpl.glsl"
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
+layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
+layout(std430, binding = BINDING_SSBO_TECH1) readonly buffer VplCountBlock { uint u_vplCount; };
+layout(location = 0) out vec4 o_irradiance;
+
+void main() {
+    ivec3 cell = ivec3(ivec2(gl_FragCoord.xy) - u_levelOrigin, 0);
+    vec4 g = texelFetch(s_geometry, cell, u_level);
+    vec3 x = g.xyz / g.w;
+    vec3 n = normalize(texelFetch(s_normal, cell, u_level).xyz + vec3(0.0, 0.0, 1e-12));
+    vec3 irradiance = vec3(0.0);
+    for (uint j = 0u; j < u_vplCount; ++j) {
+        Vpl v = u_vpls[j];
+        if (v.position.w < 0.5) continue;
+        irradiance += vplIrradiance(v, x, n, true, 0.0);
+    }
+    o_irradiance = vec4(irradiance, 1.0);
+}

@@ -1,0 +1,53 @@
+// Base level of the eye-space min-max pyramid (Nichols 2010 §3.2.2) from the camera G-buffer:
+// position, normal, and the relative linear-depth derivative sqrt(dz/dx^2 + dz/dy^2) / z with the
+// larger of the forward and backward differences (so a pixel on either side of a depth edge sees it).
+// Inputs: G-buffer, u_frame. Outputs: pyramid level 0 (see pyramid.glsl), images BINDING_IMG0..3.
+#include "common/gbuffer.glsl"
+#include "common/frame.glsl"
+#include "techniques/nichols/pyramid.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = BINDING_IMG0) writeonly uniform image2DArray i_geometry;
+layout(rgba32f, binding = BINDING_IMG1) writeonly uniform image2DArray i_normal;
+layout(rgba32f, binding = BINDING_IMG2) writeonly uniform image2DArray i_normalMin;
+layout(rgba32f, binding = BINDING_IMG3) writeonly uniform image2DArray i_normalMax;
+uniform ivec2 u_size;
+
+float viewDepth(ivec2 p, out bool covered) {
+    p = clamp(p, ivec2(0), u_size - 1);
+    vec4 x = texelFetch(s_gPosition, p, 0);
+    covered = x.w > 0.5;
+    return -(u_frame.viewFromWorld * vec4(x.xyz, 1.0)).z;
+}
+
+float axisDerivative(ivec2 p, ivec2 step, float z) {
+    bool a, b;
+    float za = viewDepth(p + step, a), zb = viewDepth(p - step, b);
+    bool inA = all(lessThan(p + step, u_size)), inB = all(greaterThanEqual(p - step, ivec2(0)));
+    if ((inA && !a) || (inB && !b)) return kDerivativeOfEdge;
+    float d = 0.0;
+    if (inA) d = max(d, abs(za - z));
+    if (inB) d = max(d, abs(z - zb));
+    return d;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, u_size))) return;
+    Surface s = readSurface(p);
+    ivec3 t = ivec3(p, 0);
+    if (!s.covered) {
+        imageStore(i_geometry, t, vec4(0.0));
+        imageStore(i_normal, t, vec4(0.0));
+        imageStore(i_normalMin, t, vec4(vec3(kNormalEmptyMin), 1.0));
+        imageStore(i_normalMax, t, vec4(vec3(kNormalEmptyMax), 0.0));
+        return;
+    }
+    bool covered;
+    float z = viewDepth(p, covered);
+    float dx = axisDerivative(p, ivec2(1, 0), z), dy = axisDerivative(p, ivec2(0, 1), z);
+    float derivative = dx >= kDerivativeOfEdge || dy >= kDerivativeOfEdge ? kDerivativeOfEdge : sqrt(dx * dx + dy * dy) / max(z, 1e-6);
+    imageStore(i_geometry, t, vec4(s.position, 1.0));
+    imageStore(i_normal, t, vec4(s.normal, derivative));
+    imageStore(i_normalMin, t, vec4(s.normal, 0.0));
+    imageStore(i_normalMax, t, vec4(s.normal, z));
+}

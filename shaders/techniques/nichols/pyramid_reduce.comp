@@ -1,0 +1,48 @@
+// One level of the min-max pyramid (Nichols 2010 §3.2.2): each texel combines its 2x2 children (3 on
+// the last row/column of odd-sized levels): sums of position, normal, flux and area; max of the depth
+// derivative and of the depth; per-component min/max of the normal; covered/uncovered counts.
+// Host uniforms: u_childSize, u_size, u_hasFlux (light pyramid).
+// Inputs: level k-1 (images BINDING_IMG0..4). Outputs: level k (images BINDING_IMG5..9).
+#include "techniques/nichols/pyramid.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = BINDING_IMG0) readonly uniform image2DArray i_geometryIn;
+layout(rgba32f, binding = BINDING_IMG1) readonly uniform image2DArray i_normalIn;
+layout(rgba32f, binding = BINDING_IMG2) readonly uniform image2DArray i_normalMinIn;
+layout(rgba32f, binding = BINDING_IMG3) readonly uniform image2DArray i_normalMaxIn;
+layout(rgba32f, binding = BINDING_IMG4) readonly uniform image2DArray i_fluxIn;
+layout(rgba32f, binding = BINDING_IMG5) writeonly uniform image2DArray i_geometryOut;
+layout(rgba32f, binding = BINDING_IMG6) writeonly uniform image2DArray i_normalOut;
+layout(rgba32f, binding = BINDING_IMG7) writeonly uniform image2DArray i_normalMinOut;
+layout(rgba32f, binding = BINDING_IMG8) writeonly uniform image2DArray i_normalMaxOut;
+layout(rgba32f, binding = BINDING_IMG9) writeonly uniform image2DArray i_fluxOut;
+uniform ivec2 u_childSize;
+uniform ivec2 u_size;
+uniform bool u_hasFlux;
+
+void main() {
+    ivec3 t = ivec3(gl_GlobalInvocationID.xyz);
+    if (any(greaterThanEqual(t.xy, u_size))) return;
+    ivec2 first = 2 * t.xy;
+    ivec2 last = mix(first + 1, u_childSize - 1, equal(t.xy, u_size - 1));
+    vec4 g = vec4(0.0), n = vec4(0.0), nMin = vec4(vec3(kNormalEmptyMin), 0.0), nMax = vec4(vec3(kNormalEmptyMax), 0.0),
+         f = vec4(0.0);
+    for (int y = first.y; y <= last.y; ++y)
+        for (int x = first.x; x <= last.x; ++x) {
+            ivec3 c = ivec3(x, y, t.z);
+            g += imageLoad(i_geometryIn, c);
+            vec4 cn = imageLoad(i_normalIn, c);
+            n.xyz += cn.xyz;
+            n.w = max(n.w, cn.w);
+            vec4 cMin = imageLoad(i_normalMinIn, c), cMax = imageLoad(i_normalMaxIn, c);
+            nMin.xyz = min(nMin.xyz, cMin.xyz);
+            nMin.w += cMin.w;
+            nMax.xyz = max(nMax.xyz, cMax.xyz);
+            nMax.w = max(nMax.w, cMax.w);
+            if (u_hasFlux) f += imageLoad(i_fluxIn, c);
+        }
+    imageStore(i_geometryOut, t, g);
+    imageStore(i_normalOut, t, n);
+    imageStore(i_normalMinOut, t, nMin);
+    imageStore(i_normalMaxOut, t, nMax);
+    if (u_hasFlux) imageStore(i_fluxOut, t, f);
+}

@@ -1,0 +1,51 @@
+// Coarse-to-fine, empty-aware upsampling and combination (Nichols 2010 §3.2.5, checklist item 6),
+// one level per dispatch from the coarsest down to 0. A cell of level k "has data" if it was rendered
+// at k (atlas alpha) or lies under a coarser cell with data (parent result, nearest). Its value is
+// rendered + inherited (disjoint sets). An inherited cell becomes the (1,2,1)x(1,2,1) tent-weighted
+// average of the 3x3 neighbours that have data (weights are an assumption; the thesis does not give
+// them); a cell rendered at this level keeps its value (deviation: the thesis's pseudo-code filters it
+// too, which blurs full-resolution results across edges). Output only where the cell has data, so
+// energy never crosses into or out of empty cells.
+// Host uniforms: u_level, u_levelOrigin, u_size, u_parentSize, u_hasParent.
+// Inputs: atlas (BINDING_TEX_TECH0), result of level k+1 (BINDING_TEX_TECH1, lod k+1).
+// Output: result of level k (image BINDING_IMG0, rgba32f 2D array mip k; alpha 1 = has data).
+#include "techniques/nichols/atlas.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = BINDING_TEX_TECH0) uniform sampler2D s_atlas;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_parent;
+layout(rgba32f, binding = BINDING_IMG0) writeonly uniform image2DArray i_result;
+uniform ivec2 u_size;
+uniform ivec2 u_parentSize;
+uniform bool u_hasParent;
+
+vec4 cellValue(ivec2 c) {
+    vec4 rendered = texelFetch(s_atlas, u_levelOrigin + c, 0);
+    vec4 inherited = u_hasParent ? texelFetch(s_parent, ivec3(min(c / 2, u_parentSize - 1), 0), u_level + 1) : vec4(0.0);
+    return vec4(rendered.rgb + inherited.rgb, max(rendered.a, inherited.a));
+}
+
+void main() {
+    ivec2 c = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(c, u_size))) return;
+    vec4 own = cellValue(c);
+    vec4 result = vec4(0.0);
+    bool renderedHere = texelFetch(s_atlas, u_levelOrigin + c, 0).a > 0.5;
+    if (renderedHere) {
+        result = vec4(own.rgb, 1.0);
+    } else if (own.a > 0.5) {
+        vec3 sum = vec3(0.0);
+        float weight = 0.0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                ivec2 n = c + ivec2(dx, dy);
+                if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, u_size))) continue;
+                vec4 v = cellValue(n);
+                if (v.a < 0.5) continue;
+                float w = float((2 - abs(dx)) * (2 - abs(dy)));
+                sum += w * v.rgb;
+                weight += w;
+            }
+        result = vec4(sum / weight, 1.0);
+    }
+    imageStore(i_result, ivec3(c, 0), result);
+}

@@ -1,0 +1,143 @@
+// `isr` — image-space radiosity (Nichols 2010, Ch. 4; Nichols, Shopf & Wyman, CGF 2009).
+//
+// Passes (timers named after the rows of Table 4.1):
+//   "rsm"             Generate Reflective Shadow Map: light 0's RSM (techniques/nichols/ReflectiveShadowMap).
+//   "vpl-cache"       the VPL cache: a regular vplGrid^2 grid (vplMode=regular, the stencilled gather of
+//                     Table 4.1) or multiresolution light-space clusters (vplMode=clusters, §4.2.2): a
+//                     min-max pyramid over the RSM, and one VPL per valid light-space patch (16^2..64^2).
+//   "min-max-mipmap"  Create Min-Max Mipmap: depth-derivative max-mipmap + per-component normal min-max
+//                     over the G-buffer down to 16^2, with the refine flags (diagonal neighbours, §3.4.2).
+//   "stencil-setup"   Multires Stencil Setup: marks each covered pixel at exactly one level of the
+//                     flattened atlas (valid iff not refined at its level and its parent is).
+//   "gather"          Stenciled Gathering: every marked atlas texel gathers every VPL (Eqs. 4.1-4.5).
+//   "upsample"        Upsampling: coarse-to-fine empty-aware 3x3 interpolation (§3.2.5), then x albedo/pi.
+// Counters: vpls, fragments per level ("fragments/level-k"), total gather fragments.
+//
+// Deviations (docs/techniques/isr.md): stencil set-up is one quad per level rectangle of the atlas
+// (same fragments as one full-atlas pass); the thresholds, the atlas layout, the upsampling weights,
+// the coarse patches' position/normal (mean of the covered pixels) and the finest light level are
+// assumptions; the flux uses each texel's exact solid angle (no equal-solid-angle approximation);
+// compute shaders replace the geometry-shader cluster pass (same selection rule).
+#include "techniques/isr/IsrTechnique.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+
+#include <fmt/format.h>
+
+#include <numeric>
+
+namespace bounce {
+
+namespace {
+constexpr int kLocalSize = 8;  // clusters.comp local size
+}
+
+void IsrTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("equalSolidAngle", m_equalSolidAngle, "Eq. 4.4: every RSM texel gets the frustum's solid angle / texels (thesis); off = exact per-texel solid angle");
+    v.field("rsmSize", m_rsmSize, "RSM resolution per side (thesis 256)", 8, 2048);
+    v.field("vplMode", m_vplMode, "clusters: multiresolution light-space patches (§4.2.2); regular: fixed VPL grid (Table 4.1)", kVplModes);
+    v.field("vplGrid", m_vplGrid, "regular mode: VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
+    v.field("lightCoarsest", m_lightCoarsest, "clusters: coarsest light-space patch grid (thesis 16)", 1, 2048);
+    v.field("lightFinest", m_lightFinest, "clusters: finest light-space patch grid (assumption 64; up to rsmSize)", 1, 2048);
+    v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
+    v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
+    v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
+    v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: not adopted, up to 40 % slower)");
+    v.field("lightDepthThreshold", m_lightThresholds.depth, "clusters: light-space max relative distance derivative (assumption)", 0.0f, 1e9f);
+    v.field("lightNormalThreshold", m_lightThresholds.normal, "clusters: light-space normal component range (assumption)", 0.0f, 2.0f);
+}
+
+Expected<void> IsrTechnique::setup(const SetupContext&) {
+    if (m_rsmSize % m_vplGrid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", m_vplGrid, m_rsmSize);
+    if (m_lightFinest > m_rsmSize || m_lightCoarsest > m_lightFinest)
+        return makeError("settings need lightCoarsest={} <= lightFinest={} <= rsmSize={}", m_lightCoarsest, m_lightFinest, m_rsmSize);
+    BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
+    BOUNCE_TRY(m_regular, nichols::RegularVpls::create());
+    BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
+    BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
+    BOUNCE_TRY(m_buffer, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                            {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}}}));
+    BOUNCE_TRY(m_clusters, gl::Program::build({"isr.clusters", {{GL_COMPUTE_SHADER, "techniques/isr/clusters.comp"}}}));
+    m_count = gl::Buffer::create("isr.vplCount", sizeof(uint32_t));
+    m_clearFbo = gl::Framebuffer::create("isr.clear");
+    return {};
+}
+
+void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    {
+        auto s = ctx.timers.scope("rsm");
+        if (!m_rsm->render(ctx, m_rsmSize, m_equalSolidAngle)) {
+            const float zero[4] = {0, 0, 0, 0};
+            m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+            glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);
+            ctx.counters["vpls"] = 0.0;
+            return;
+        }
+    }
+    const gl::Buffer* vpls = nullptr;
+    {
+        auto s = ctx.timers.scope("vpl-cache");
+        if (m_vplMode == "regular") {
+            m_regular->extract(*m_rsm, m_vplGrid);
+            m_vplCount = m_regular->count();
+            const uint32_t count = static_cast<uint32_t>(m_vplCount);
+            m_count.upload(0, sizeof(count), &count);
+            vpls = &m_regular->buffer();
+        } else {
+            m_light->buildLight(*m_rsm, m_lightCoarsest, m_lightThresholds);
+            int finest = 0;
+            while (finest + 1 < m_light->levels() && m_light->levelSize(finest).x > m_lightFinest) ++finest;
+            const glm::ivec2 fine = m_light->levelSize(finest);
+            const size_t capacity = static_cast<size_t>(fine.x) * fine.y * m_light->layers() * sizeof(nichols::VplRecord);
+            if (!m_clusterVpls || m_clusterVpls.size() != capacity) m_clusterVpls = gl::Buffer::create("isr.clusterVpls", capacity);
+            m_count.clearZero();
+            m_light->geometry().bind(BINDING_TEX_TECH0);
+            m_light->normal().bind(BINDING_TEX_TECH1);
+            m_light->flux().bind(BINDING_TEX_TECH2);
+            m_light->refine().bind(BINDING_TEX_TECH3);
+            m_clusterVpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+            m_clusters.set("u_finest", finest);
+            m_clusters.set("u_coarsest", m_light->levels() - 1);
+            m_clusters.use();
+            glDispatchCompute(static_cast<GLuint>((fine.x + kLocalSize - 1) / kLocalSize),
+                              static_cast<GLuint>((fine.y + kLocalSize - 1) / kLocalSize),
+                              static_cast<GLuint>(m_light->layers()));
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+            uint32_t count = 0;
+            m_count.download(0, sizeof(count), &count);
+            m_vplCount = static_cast<int>(count);
+            vpls = &m_clusterVpls;
+        }
+    }
+    {
+        auto s = ctx.timers.scope("min-max-mipmap");
+        m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_eyeThresholds);
+    }
+    {
+        auto s = ctx.timers.scope("stencil-setup");
+        m_buffer->begin(*m_eye);
+        m_buffer->stencilSetup(*m_eye);
+    }
+    std::vector<double> fragments;
+    {
+        auto s = ctx.timers.scope("gather");
+        m_eye->geometry().bind(BINDING_TEX_TECH0);
+        m_eye->normal().bind(BINDING_TEX_TECH1);
+        vpls->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+        m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+        fragments = m_buffer->drawStencilled(m_gather);
+    }
+    {
+        auto s = ctx.timers.scope("upsample");
+        m_buffer->upsample();
+        m_buffer->combine(ctx.gbuffer, indirect);
+    }
+    ctx.counters["vpls"] = static_cast<double>(m_vplCount);
+    for (size_t k = 0; k < fragments.size(); ++k) ctx.counters[fmt::format("fragments/level-{}", k)] = fragments[k];
+    ctx.counters["gatherFragments"] = std::accumulate(fragments.begin(), fragments.end(), 0.0);
+}
+
+}  // namespace bounce

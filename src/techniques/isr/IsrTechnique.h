@@ -1,0 +1,48 @@
+#pragma once
+// `isr`: image-space radiosity, Nichols (2010) Ch. 4 (§4.2.1-4.2.2): eye-space min-max mipmaps, a
+// one-pass stencil set-up over the flattened multiresolution buffer, a stencilled gather from a VPL
+// cache with the disk-to-point form factor, coarse-to-fine upsampling; VPLs either on a regular RSM
+// grid (the stencilled gather of Table 4.1) or as multiresolution light-space clusters (§4.2.2).
+#include "techniques/Technique.h"
+#include "techniques/nichols/MultiresBuffer.h"
+#include "techniques/nichols/RegularVpls.h"
+
+#include <array>
+#include <optional>
+
+namespace bounce {
+
+class IsrTechnique final : public Technique {
+public:
+    std::string_view name() const override { return "isr"; }
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+
+    const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
+    const nichols::MinMaxPyramid& eyePyramid() const { return *m_eye; }
+    int vplCount() const { return m_vplCount; }
+
+    static constexpr std::array<std::string_view, 2> kVplModes{"clusters", "regular"};
+
+private:
+    bool m_equalSolidAngle = false;  // Eq. 4.4 approximation off: exact texel solid angles
+    int m_rsmSize = 256;            // §4.2.1.2
+    std::string m_vplMode{"clusters"};
+    int m_vplGrid = 16;             // regular mode: 16^2 = 256 VPLs (Table 4.1)
+    int m_lightCoarsest = 16;       // §4.2.4: "16^2 coarsest light patches"
+    int m_lightFinest = 64;         // finest cluster level (assumption; "as fine as the RSM" is allowed)
+    int m_eyeCoarsest = 16;         // §3.2.4: illumination buffer from 16^2
+    nichols::PyramidThresholds m_eyeThresholds{0.1f, 0.3f, false};    // assumptions (thesis gives none)
+    nichols::PyramidThresholds m_lightThresholds{0.1f, 0.3f, false};  // assumptions
+    std::optional<nichols::ReflectiveShadowMap> m_rsm;
+    std::optional<nichols::RegularVpls> m_regular;
+    std::optional<nichols::MinMaxPyramid> m_eye, m_light;
+    std::optional<nichols::MultiresBuffer> m_buffer;
+    gl::Program m_gather, m_clusters;
+    gl::Buffer m_clusterVpls, m_count;
+    gl::Framebuffer m_clearFbo;
+    int m_vplCount = 0;
+};
+
+}  // namespace bounce

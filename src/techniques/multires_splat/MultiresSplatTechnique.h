@@ -1,0 +1,41 @@
+#pragma once
+// `multires-splat`: multiresolution splatting, Nichols (2010) Ch. 3 (Nichols & Wyman, I3D 2009), mode B
+// (one shared subsplat list per frame, from depth and normal discontinuities).
+#include "techniques/Technique.h"
+#include "techniques/nichols/MultiresBuffer.h"
+#include "techniques/nichols/RegularVpls.h"
+
+#include <optional>
+
+namespace bounce {
+
+class MultiresSplatTechnique final : public Technique {
+public:
+    std::string_view name() const override { return "multires-splat"; }
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+
+    const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
+
+private:
+    int m_rsmSize = 256;
+    int m_vplGrid = 16;            // thesis 16^2..128^2 VPLs
+    int m_eyeCoarsest = 16;        // §3.2.3: start from the 256 subsplats of 16^2
+    float m_minDistance = 0.05f;   // metres; Eq. 3.2's r^2 clamp (assumption)
+    bool m_detailModulation = false;  // Eq. 3.3 (§3.3.3: optional, used with high normal thresholds)
+    float m_detailAlpha = 0.5f;       // Fig. 3.9
+    nichols::PyramidThresholds m_thresholds{0.1f, 0.3f, false};
+    std::optional<nichols::ReflectiveShadowMap> m_rsm;
+    std::optional<nichols::RegularVpls> m_vpls;
+    std::optional<nichols::MinMaxPyramid> m_eye;
+    std::optional<nichols::MultiresBuffer> m_buffer;
+    gl::Program m_refine, m_splat;
+    gl::Buffer m_lists[2];
+    gl::VertexArray m_vaos[2];
+    gl::TransformFeedback m_feedback;
+    gl::Query m_written;
+    size_t m_capacity = 0;
+};
+
+}  // namespace bounce

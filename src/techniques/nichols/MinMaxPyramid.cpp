@@ -1,0 +1,127 @@
+#include "techniques/nichols/MinMaxPyramid.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+
+#include <algorithm>
+
+namespace bounce::nichols {
+
+namespace {
+constexpr int kLocalSize = 8;  // local_size_x/y of the pyramid compute shaders
+
+void dispatch2D(glm::ivec2 size, int layers) {
+    glDispatchCompute(static_cast<GLuint>((size.x + kLocalSize - 1) / kLocalSize),
+                      static_cast<GLuint>((size.y + kLocalSize - 1) / kLocalSize), static_cast<GLuint>(layers));
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+}  // namespace
+
+Expected<MinMaxPyramid> MinMaxPyramid::create() {
+    MinMaxPyramid p;
+    BOUNCE_TRY(p.m_baseEye, gl::Program::build({"nichols.pyramidBaseEye",
+                                                {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_base_eye.comp"}}}));
+    BOUNCE_TRY(p.m_baseLight, gl::Program::build({"nichols.pyramidBaseLight",
+                                                  {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_base_light.comp"}}}));
+    BOUNCE_TRY(p.m_reduce, gl::Program::build({"nichols.pyramidReduce",
+                                               {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_reduce.comp"}}}));
+    BOUNCE_TRY(p.m_flag, gl::Program::build({"nichols.pyramidFlag",
+                                             {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_flag.comp"}}}));
+    return p;
+}
+
+void MinMaxPyramid::allocate(glm::ivec2 size, int layers, int coarsestSize, bool flux) {
+    if (size == m_baseSize && layers == m_layers && flux == m_hasFlux && coarsestSize == m_coarsest) return;
+    m_coarsest = coarsestSize;
+    m_sizes.clear();
+    glm::ivec2 s = size;
+    m_sizes.push_back(s);
+    while (std::max(s.x, s.y) > coarsestSize && (s.x > 1 || s.y > 1)) {
+        s = glm::max(s / 2, glm::ivec2(1));
+        m_sizes.push_back(s);
+    }
+    m_levels = static_cast<int>(m_sizes.size());
+    m_baseSize = size;
+    m_layers = layers;
+    m_hasFlux = flux;
+    gl::TextureDesc d;
+    d.target = GL_TEXTURE_2D_ARRAY;
+    d.width = size.x;
+    d.height = size.y;
+    d.depth = layers;
+    d.levels = m_levels;
+    d.format = GL_RGBA32F;
+    d.minFilter = GL_NEAREST_MIPMAP_NEAREST;
+    d.magFilter = GL_NEAREST;
+    m_geometry = gl::Texture::create("nichols.pyramid.geometry", d);
+    m_normal = gl::Texture::create("nichols.pyramid.normal", d);
+    m_normalMin = gl::Texture::create("nichols.pyramid.normalMin", d);
+    m_normalMax = gl::Texture::create("nichols.pyramid.normalMax", d);
+    if (flux) m_flux = gl::Texture::create("nichols.pyramid.flux", d);
+    d.format = GL_R32F;
+    m_refine = gl::Texture::create("nichols.pyramid.refine", d);
+    BOUNCE_CHECK(glm::ivec2(m_sizes.back()) == glm::max(size >> (m_levels - 1), glm::ivec2(1)),
+                 "pyramid level sizes follow GL mip sizes");
+}
+
+void MinMaxPyramid::buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t) {
+    allocate(gbuffer.size(), 1, coarsestSize, false);
+    gbuffer.bind();
+    m_geometry.bindImage(BINDING_IMG0, GL_WRITE_ONLY, 0, true);
+    m_normal.bindImage(BINDING_IMG1, GL_WRITE_ONLY, 0, true);
+    m_normalMin.bindImage(BINDING_IMG2, GL_WRITE_ONLY, 0, true);
+    m_normalMax.bindImage(BINDING_IMG3, GL_WRITE_ONLY, 0, true);
+    m_baseEye.set("u_size", m_sizes[0]);
+    m_baseEye.use();
+    dispatch2D(m_sizes[0], 1);
+    reduceAndFlag(t, false);
+}
+
+void MinMaxPyramid::buildLight(const ReflectiveShadowMap& rsm, int coarsestSize, const PyramidThresholds& t) {
+    allocate({rsm.size(), rsm.size()}, rsm.layers(), coarsestSize, true);
+    rsm.position().bind(BINDING_TEX_TECH0);
+    rsm.normal().bind(BINDING_TEX_TECH1);
+    rsm.flux().bind(BINDING_TEX_TECH2);
+    m_geometry.bindImage(BINDING_IMG0, GL_WRITE_ONLY, 0, true);
+    m_normal.bindImage(BINDING_IMG1, GL_WRITE_ONLY, 0, true);
+    m_normalMin.bindImage(BINDING_IMG2, GL_WRITE_ONLY, 0, true);
+    m_normalMax.bindImage(BINDING_IMG3, GL_WRITE_ONLY, 0, true);
+    m_flux.bindImage(BINDING_IMG4, GL_WRITE_ONLY, 0, true);
+    m_baseLight.set("u_size", m_sizes[0]);
+    m_baseLight.use();
+    dispatch2D(m_sizes[0], m_layers);
+    reduceAndFlag(t, true);
+}
+
+void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux) {
+    const gl::Texture* chains[5] = {&m_geometry, &m_normal, &m_normalMin, &m_normalMax, flux ? &m_flux : &m_geometry};
+    // Level 0 has no refine flag of its own (the finest level is always valid under a refined parent).
+    const float zero = 0.0f;
+    glClearTexImage(m_refine.id(), 0, GL_RED, GL_FLOAT, &zero);
+    for (int level = 1; level < m_levels; ++level) {
+        const glm::ivec2 child = m_sizes[static_cast<size_t>(level - 1)], size = m_sizes[static_cast<size_t>(level)];
+        for (int i = 0; i < 5; ++i) {
+            chains[i]->bindImage(BINDING_IMG0 + i, GL_READ_ONLY, level - 1, true);
+            chains[i]->bindImage(BINDING_IMG5 + i, GL_WRITE_ONLY, level, true);
+        }
+        m_reduce.set("u_childSize", child);
+        m_reduce.set("u_size", size);
+        m_reduce.set("u_hasFlux", flux ? 1 : 0);
+        m_reduce.use();
+        dispatch2D(size, m_layers);
+
+        for (int i = 0; i < 4; ++i) chains[i]->bindImage(BINDING_IMG0 + i, GL_READ_ONLY, level, true);
+        m_refine.bindImage(BINDING_IMG4, GL_READ_ONLY, level - 1, true);
+        m_refine.bindImage(BINDING_IMG5, GL_WRITE_ONLY, level, true);
+        m_flag.set("u_size", size);
+        m_flag.set("u_childSize", child);
+        m_flag.set("u_childHasFlags", level >= 2 ? 1 : 0);
+        m_flag.set("u_depthThreshold", t.depth);
+        m_flag.set("u_normalThreshold", t.normal);
+        m_flag.set("u_edgeNeighbours", t.edgeNeighbours ? 1 : 0);
+        m_flag.use();
+        dispatch2D(size, m_layers);
+    }
+}
+
+}  // namespace bounce::nichols

@@ -1,0 +1,152 @@
+#include "techniques/nichols/MultiresBuffer.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+#include "gpu/Context.h"
+
+namespace bounce::nichols {
+
+namespace {
+constexpr int kLocalSize = 8;  // upsample.comp local size
+}
+
+Expected<MultiresBuffer> MultiresBuffer::create() {
+    MultiresBuffer b;
+    BOUNCE_TRY(b.m_stencil, gl::Program::build({"nichols.stencilSetup",
+                                                {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                 {GL_FRAGMENT_SHADER, "techniques/nichols/stencil_setup.frag"}}}));
+    BOUNCE_TRY(b.m_upsample, gl::Program::build({"nichols.upsample",
+                                                 {{GL_COMPUTE_SHADER, "techniques/nichols/upsample.comp"}}}));
+    BOUNCE_TRY(b.m_combine, gl::Program::build({"nichols.combine",
+                                                {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                 {GL_FRAGMENT_SHADER, "techniques/nichols/combine.frag"}}}));
+    b.m_atlasFbo = gl::Framebuffer::create("nichols.atlas.fbo");
+    b.m_combineFbo = gl::Framebuffer::create("nichols.combine.fbo");
+    b.m_query = gl::Query::create("nichols.fragments", GL_SAMPLES_PASSED);
+    return b;
+}
+
+void MultiresBuffer::begin(const MinMaxPyramid& pyramid) {
+    std::vector<glm::ivec2> sizes, origins;
+    const glm::ivec2 base = pyramid.levelSize(0);
+    int y = 0;
+    for (int k = 0; k < pyramid.levels(); ++k) {
+        sizes.push_back(pyramid.levelSize(k));
+        origins.push_back(k == 0 ? glm::ivec2(0) : glm::ivec2(base.x, y));
+        if (k > 0) y += pyramid.levelSize(k).y;
+    }
+    const glm::ivec2 atlasSize(base.x + (pyramid.levels() > 1 ? pyramid.levelSize(1).x : 0), base.y);
+    BOUNCE_CHECK(y <= base.y, "atlas column of coarse levels fits the base height");
+    if (atlasSize != m_atlasSize || sizes != m_sizes) {
+        m_atlasSize = atlasSize;
+        m_atlas = gl::Texture::create2D("nichols.atlas", atlasSize.x, atlasSize.y, GL_RGBA32F);
+        m_atlas.setFilter(GL_NEAREST, GL_NEAREST);
+        m_depthStencil = gl::Texture::create2D("nichols.atlas.stencil", atlasSize.x, atlasSize.y, GL_DEPTH24_STENCIL8);
+        gl::TextureDesc d;
+        d.target = GL_TEXTURE_2D_ARRAY;
+        d.width = base.x;
+        d.height = base.y;
+        d.levels = pyramid.levels();
+        d.format = GL_RGBA32F;
+        d.minFilter = GL_NEAREST_MIPMAP_NEAREST;
+        d.magFilter = GL_NEAREST;
+        m_result = gl::Texture::create("nichols.upsampled", d);
+        m_atlasFbo.attach(GL_COLOR_ATTACHMENT0, m_atlas);
+        m_atlasFbo.attach(GL_DEPTH_STENCIL_ATTACHMENT, m_depthStencil);
+        m_atlasFbo.setDrawBuffers(1);
+        BOUNCE_CHECK(m_atlasFbo.complete(), "nichols atlas framebuffer");
+    }
+    m_sizes = sizes;
+    m_origins = origins;
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(m_atlasFbo.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfi(m_atlasFbo.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+}
+
+void MultiresBuffer::forEachLevel(gl::Program& program, const std::function<void(int)>& perLevel) {
+    m_atlasFbo.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    gl::Context::current()->bindEmptyVertexArray();
+    for (int k = 0; k < levels(); ++k) {
+        const glm::ivec2 o = levelOrigin(k), s = levelSize(k);
+        glViewport(o.x, o.y, s.x, s.y);
+        program.set("u_level", k);
+        program.set("u_levelOrigin", o);
+        program.use();
+        perLevel(k);
+    }
+}
+
+void MultiresBuffer::stencilSetup(const MinMaxPyramid& pyramid) {
+    pyramid.geometry().bind(BINDING_TEX_TECH0);
+    pyramid.refine().bind(BINDING_TEX_TECH1);
+    m_stencil.set("u_coarsest", levels() - 1);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glStencilMask(0xFF);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    forEachLevel(m_stencil, [](int) { glDrawArrays(GL_TRIANGLES, 0, 3); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_STENCIL_TEST);
+}
+
+std::vector<double> MultiresBuffer::drawStencilled(gl::Program& program) {
+    std::vector<double> fragments(static_cast<size_t>(levels()), 0.0);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    forEachLevel(program, [&](int k) {
+        glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glEndQuery(GL_SAMPLES_PASSED);
+        GLuint64 samples = 0;
+        glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &samples);
+        fragments[static_cast<size_t>(k)] = static_cast<double>(samples);
+    });
+    glDisable(GL_STENCIL_TEST);
+    return fragments;
+}
+
+void MultiresBuffer::bindAtlas() {
+    m_atlasFbo.bind();
+    glViewport(0, 0, m_atlasSize.x, m_atlasSize.y);
+}
+
+void MultiresBuffer::upsample() {
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    m_atlas.bind(BINDING_TEX_TECH0);
+    m_result.bind(BINDING_TEX_TECH1);
+    for (int k = levels() - 1; k >= 0; --k) {
+        const glm::ivec2 s = levelSize(k);
+        m_result.bindImage(BINDING_IMG0, GL_WRITE_ONLY, k, true);
+        m_upsample.set("u_level", k);
+        m_upsample.set("u_levelOrigin", levelOrigin(k));
+        m_upsample.set("u_size", s);
+        m_upsample.set("u_parentSize", k + 1 < levels() ? levelSize(k + 1) : s);
+        m_upsample.set("u_hasParent", k + 1 < levels() ? 1 : 0);
+        m_upsample.use();
+        glDispatchCompute(static_cast<GLuint>((s.x + kLocalSize - 1) / kLocalSize),
+                          static_cast<GLuint>((s.y + kLocalSize - 1) / kLocalSize), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+}
+
+void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha) {
+    m_combineFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+    m_combineFbo.setDrawBuffers(1);
+    BOUNCE_CHECK(m_combineFbo.complete(), "nichols combine framebuffer");
+    m_combineFbo.bind();
+    glViewport(0, 0, indirect.width(), indirect.height());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    gbuffer.bind();
+    m_result.bind(BINDING_TEX_TECH0);
+    m_combine.set("u_detailAlpha", detailAlpha);
+    m_combine.use();
+    gl::Context::current()->bindEmptyVertexArray();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace bounce::nichols

@@ -1,0 +1,49 @@
+#pragma once
+// The multiresolution illumination buffer of Nichols (2010) §3.2.4 and §4.2.1.1 (checklist items 5,
+// 6, 11), flattened into one atlas so that a pass can touch every level: level 0 at the origin, the
+// coarser levels in a column to its right (shaders/techniques/nichols/atlas.glsl). It owns the
+// atlas colour (RGBA32F irradiance, alpha = rendered), its depth-stencil buffer, the one-pass
+// stencil set-up, the coarse-to-fine empty-aware upsampling and the final combine.
+#include "techniques/nichols/MinMaxPyramid.h"
+
+#include <functional>
+
+namespace bounce::nichols {
+
+class MultiresBuffer {
+public:
+    static Expected<MultiresBuffer> create();
+
+    // (Re)allocates for `pyramid`'s levels and clears the atlas (colour and stencil).
+    void begin(const MinMaxPyramid& pyramid);
+    // Marks each covered pixel's cell at exactly one level in the stencil (ref 1).
+    void stencilSetup(const MinMaxPyramid& pyramid);
+    // Draws `program` (full-screen-triangle vertex stage) over every level's rectangle with the stencil
+    // test EQUAL 1; u_level and u_levelOrigin are set per level. Returns fragments per level.
+    std::vector<double> drawStencilled(gl::Program& program);
+    // Binds the atlas framebuffer with the whole atlas as viewport (for point splatting, no stencil).
+    void bindAtlas();
+    glm::ivec2 atlasSize() const { return m_atlasSize; }
+    // Coarse-to-fine upsampling (§3.2.5) into result() level 0.
+    void upsample();
+    // indirect = albedo / pi * result level 0, times Eq. 3.3's detail term when detailAlpha > 0.
+    void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha = 0.0f);
+
+    glm::ivec2 levelOrigin(int level) const { return m_origins[static_cast<size_t>(level)]; }
+    glm::ivec2 levelSize(int level) const { return m_sizes[static_cast<size_t>(level)]; }
+    int levels() const { return static_cast<int>(m_sizes.size()); }
+    const gl::Texture& atlas() const { return m_atlas; }
+    const gl::Texture& result() const { return m_result; }
+
+private:
+    void forEachLevel(gl::Program& program, const std::function<void(int)>& perLevel);
+
+    gl::Program m_stencil, m_upsample, m_combine;
+    gl::Texture m_atlas, m_depthStencil, m_result;
+    gl::Framebuffer m_atlasFbo, m_combineFbo;
+    gl::Query m_query;
+    std::vector<glm::ivec2> m_origins, m_sizes;
+    glm::ivec2 m_atlasSize{0};
+};
+
+}  // namespace bounce::nichols

@@ -1,0 +1,45 @@
+#include "techniques/nichols/RegularVpls.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+
+namespace bounce::nichols {
+
+namespace {
+constexpr int kLocalSize = 8;  // vpl_extract.comp local_size_x/y
+}
+
+Expected<RegularVpls> RegularVpls::create() {
+    RegularVpls r;
+    BOUNCE_TRY(r.m_program, gl::Program::build({"nichols.vplExtract",
+                                                {{GL_COMPUTE_SHADER, "techniques/nichols/vpl_extract.comp"}}}));
+    return r;
+}
+
+void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
+    BOUNCE_CHECK(rsm.valid(), "VPL extraction without a rendered RSM");
+    BOUNCE_CHECK(grid > 0 && grid <= rsm.size() && rsm.size() % grid == 0, "VPL grid {} does not divide the RSM size {}",
+                 grid, rsm.size());
+    const int count = grid * grid * rsm.layers();
+    const size_t bytes = static_cast<size_t>(count) * sizeof(VplRecord);
+    if (!m_buffer || m_buffer.size() != bytes) m_buffer = gl::Buffer::create("nichols.vplCache", bytes);
+    m_count = count;
+    rsm.position().bind(BINDING_TEX_TECH0);
+    rsm.normal().bind(BINDING_TEX_TECH1);
+    rsm.flux().bind(BINDING_TEX_TECH2);
+    m_buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+    m_program.set("u_grid", grid);
+    m_program.set("u_block", rsm.size() / grid);
+    m_program.use();
+    const int groups = (grid + kLocalSize - 1) / kLocalSize;
+    glDispatchCompute(static_cast<GLuint>(groups), static_cast<GLuint>(groups), static_cast<GLuint>(rsm.layers()));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+std::vector<VplRecord> RegularVpls::download() const {
+    std::vector<VplRecord> v(static_cast<size_t>(m_count));
+    if (m_count > 0) m_buffer.download(0, v.size() * sizeof(VplRecord), v.data());
+    return v;
+}
+
+}  // namespace bounce::nichols

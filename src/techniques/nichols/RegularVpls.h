@@ -1,0 +1,33 @@
+#pragma once
+// Regular-grid VPL extraction from a reflective shadow map (Nichols 2010 §3.2.1, checklist item 3):
+// grid^2 VPLs per RSM layer, each carrying the summed flux of its block, written to the VPL cache
+// (an SSBO of Vpl records, shaders/techniques/nichols/vpl.glsl) that every gather reads.
+#include "techniques/nichols/ReflectiveShadowMap.h"
+
+namespace bounce::nichols {
+
+// std430 layout of shaders/techniques/nichols/vpl.glsl's Vpl.
+struct VplRecord {
+    glm::vec4 position;  // xyz, w valid
+    glm::vec4 normal;    // xyz, w area m^2
+    glm::vec4 flux;      // rgb W, w texels represented
+};
+static_assert(sizeof(VplRecord) == 48);
+
+class RegularVpls {
+public:
+    static Expected<RegularVpls> create();
+    // grid must divide rsm.size(); both are powers of two in practice (BOUNCE_CHECKed).
+    void extract(const ReflectiveShadowMap& rsm, int grid);
+
+    int count() const { return m_count; }
+    const gl::Buffer& buffer() const { return m_buffer; }
+    std::vector<VplRecord> download() const;
+
+private:
+    gl::Program m_program;
+    gl::Buffer m_buffer;
+    int m_count = 0;
+};
+
+}  // namespace bounce::nichols

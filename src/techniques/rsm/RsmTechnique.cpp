@@ -1,0 +1,76 @@
+// `rsm` — full-resolution reflective-shadow-map gather (baseline of Nichols 2010, Ch. 4).
+//
+// Passes: (1) "Generate Reflective Shadow Map" — the RSM of light 0 (techniques/nichols/
+// ReflectiveShadowMap: spot perspective, point/area/wide spot cube, directional orthographic);
+// (2) "VPL cache" — a regular vplGrid^2 grid of VPLs per RSM layer, each carrying its block's summed
+// flux; (3) "gather" — a full-screen pass in which every pixel sums every VPL (Eq. 3.2 or Eq. 4.1), no
+// indirect visibility, radiance = rho / pi * irradiance.
+//
+// Deviations: the thesis's RSM assumes a spot light and equal texel solid angles (Eq. 4.4); here each
+// texel's exact solid angle and the light's actual intensity give the flux in watts, so the
+// 1/(4 pi) mismatch between Eqs. 4.4 and 4.7 does not arise. Point, area and directional lights are
+// supported as documented in ReflectiveShadowMap.h. Scenes without lights give zero indirect light.
+// References: Nichols (2010) §3.2.1, §4.2.1.2; Dachsbacher & Stamminger (2005).
+#include "techniques/rsm/RsmTechnique.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+#include "gpu/Context.h"
+
+namespace bounce {
+
+void RsmTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("equalSolidAngle", m_equalSolidAngle, "Eq. 4.4: every RSM texel gets the frustum's solid angle / texels (thesis); off = exact per-texel solid angle");
+    v.field("rsmSize", m_rsmSize, "RSM resolution per side (per cube face for point/area lights); thesis 256, 1024 for the reference", 8, 2048);
+    v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (must divide rsmSize); thesis 16..128, = rsmSize for the converged limit", 1, 2048);
+    v.field("formFactor", m_formFactor, "disk: Eq. 4.1 disk-to-point form factor; point: Eq. 3.2 with an r^2 clamp", kFormFactors);
+    v.field("minDistance", m_minDistance, "r clamp of the point form factor, metres (assumption; the thesis gives no value)", 0.0f, 10.0f);
+}
+
+Expected<void> RsmTechnique::setup(const SetupContext&) {
+    if (m_rsmSize % m_vplGrid != 0)
+        return makeError("setting vplGrid={} does not divide rsmSize={}", m_vplGrid, m_rsmSize);
+    BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
+    BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
+    BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                            {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}}}));
+    m_fbo = gl::Framebuffer::create("rsm.fbo");
+    return {};
+}
+
+void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    const float zero[4] = {0, 0, 0, 0};
+    m_fbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+    m_fbo.setDrawBuffers(1);
+    BOUNCE_CHECK(m_fbo.complete(), "rsm framebuffer");
+    {
+        auto s = ctx.timers.scope("rsm");
+        if (!m_rsm->render(ctx, m_rsmSize, m_equalSolidAngle)) {
+            glClearNamedFramebufferfv(m_fbo.id(), GL_COLOR, 0, zero);
+            ctx.counters["vpls"] = 0.0;
+            return;
+        }
+    }
+    {
+        auto s = ctx.timers.scope("vpl-cache");
+        m_vpls->extract(*m_rsm, m_vplGrid);
+    }
+    auto s = ctx.timers.scope("gather");
+    m_fbo.bind();
+    glViewport(0, 0, ctx.size.x, ctx.size.y);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+    ctx.gbuffer.bind();
+    m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+    m_gather.set("u_vplCount", m_vpls->count());
+    m_gather.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
+    m_gather.set("u_minDistance2", m_minDistance * m_minDistance);
+    m_gather.use();
+    gl::Context::current()->bindEmptyVertexArray();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ctx.counters["vpls"] = static_cast<double>(m_vpls->count());
+    ctx.counters["gatherFragments"] = static_cast<double>(ctx.size.x) * ctx.size.y;
+}
+
+}  // namespace bounce

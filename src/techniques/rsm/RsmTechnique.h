@@ -1,0 +1,37 @@
+#pragma once
+// `rsm`: the full-resolution reflective-shadow-map gather, baseline of Nichols (2010) §4.3. Every
+// pixel gathers every VPL. With vplGrid = rsmSize it is the "1M-VPL full gather" reference of
+// Figs. 4.9/4.13 (rsmSize = 1024) that isr and hisr converge to.
+#include "techniques/Technique.h"
+#include "techniques/nichols/RegularVpls.h"
+
+#include <array>
+#include <optional>
+
+namespace bounce {
+
+class RsmTechnique final : public Technique {
+public:
+    std::string_view name() const override { return "rsm"; }
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+
+    const nichols::ReflectiveShadowMap& rsm() const { return *m_rsm; }
+    const nichols::RegularVpls& vpls() const { return *m_vpls; }
+
+    static constexpr std::array<std::string_view, 2> kFormFactors{"disk", "point"};
+
+private:
+    bool m_equalSolidAngle = false;  // Eq. 4.4 approximation off: exact texel solid angles
+    int m_rsmSize = 256;      // thesis §4.2.1.2: 256^2 RSM
+    int m_vplGrid = 16;       // 16^2 = 256 VPLs (Table 4.1)
+    std::string m_formFactor{"disk"};
+    float m_minDistance = 0.05f;  // metres; Eq. 3.2's r^2 clamp, value not given (assumption)
+    std::optional<nichols::ReflectiveShadowMap> m_rsm;
+    std::optional<nichols::RegularVpls> m_vpls;
+    gl::Program m_gather;
+    gl::Framebuffer m_fbo;
+};
+
+}  // namespace bounce

@@ -1,0 +1,128 @@
+// `isr` (Nichols 2010 Ch. 4): the stencil set-up marks each covered pixel at exactly one level, the
+// indirect image stays close to the every-texel gather limit, and energy does not grow with the
+// refinement depth of the multiresolution buffer.
+#include "GpuTestSupport.h"
+#include "NicholsTestSupport.h"
+#include "techniques/isr/IsrTechnique.h"
+
+#include <glm/vec4.hpp>
+
+#include <vector>
+
+using namespace bounce;
+using namespace bounce::nicholstest;
+
+namespace {
+
+class IsrGpuTest : public gputest::GpuTest {};
+
+std::vector<glm::vec4> readLevel(const gl::Texture& texture, int level, glm::ivec2 size) {
+    std::vector<glm::vec4> texels(static_cast<size_t>(size.x) * size.y);
+    glGetTextureImage(texture.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
+                      texels.data());
+    return texels;
+}
+
+}  // namespace
+
+TEST_F(IsrGpuTest, StencilMarksEachCoveredPixelAtExactlyOneLevel) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 64;
+    // A low coarsest level (4^2) gives five levels, so the chain rule is exercised at every depth.
+    auto p = makePipeline(*scene, "isr", {{"rsmSize", "64"}, {"lightFinest", "32"}, {"eyeCoarsest", "4"}}, kSize);
+    p->renderFrame(0);
+    auto& isr = dynamic_cast<IsrTechnique&>(p->technique());
+    const nichols::MultiresBuffer& buffer = isr.buffer();
+    ASSERT_GE(buffer.levels(), 4);
+    const glm::ivec2 atlasSize(buffer.atlas().width(), buffer.atlas().height());
+    const std::vector<glm::vec4> atlas = readLevel(buffer.atlas(), 0, atlasSize);
+    const std::vector<glm::vec4> base = readLevel(isr.eyePyramid().geometry(), 0, {kSize, kSize});
+    int covered = 0, levelsUsed = 0;
+    std::vector<bool> levelSeen(static_cast<size_t>(buffer.levels()), false);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            int marks = 0;
+            for (int k = 0; k < buffer.levels(); ++k) {
+                const glm::ivec2 cell = glm::min(glm::ivec2(x, y) >> k, buffer.levelSize(k) - 1);
+                const glm::ivec2 t = buffer.levelOrigin(k) + cell;
+                if (atlas[static_cast<size_t>(t.y) * atlasSize.x + t.x].a > 0.5f) {
+                    ++marks;
+                    levelSeen[static_cast<size_t>(k)] = true;
+                }
+            }
+            const bool isCovered = base[static_cast<size_t>(y) * kSize + x].w > 0.0f;
+            covered += isCovered ? 1 : 0;
+            ASSERT_EQ(marks, isCovered ? 1 : 0) << "pixel " << x << "," << y;
+        }
+    for (bool seen : levelSeen) levelsUsed += seen ? 1 : 0;
+    EXPECT_GT(covered, kSize * kSize / 2) << "the box fills most of the view";
+    EXPECT_GE(levelsUsed, 3) << "the Cornell box refines at several levels";
+}
+
+TEST_F(IsrGpuTest, OneLevelWithRegularVplsEqualsTheRsmGather) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 32;
+    // eyeCoarsest = image size: a single level, every pixel gathers the same VPL cache as rsm.
+    const Image isr = renderIndirect(*scene, "isr", {{"rsmSize", "64"}, {"vplMode", "regular"}, {"vplGrid", "16"}, {"eyeCoarsest", "32"}}, kSize);
+    const Image rsm = renderIndirect(*scene, "rsm", {{"rsmSize", "64"}, {"vplGrid", "16"}}, kSize);
+    ASSERT_GT(totalRadiance(rsm), 0.0);
+    // Same sum in the same order: only float rounding of the mean position (g.xyz / 1) differs.
+    EXPECT_LT(relativeRmsError(isr, rsm), 1e-5);
+}
+
+TEST_F(IsrGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 64;
+    const Image limit = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "128"}}, kSize);
+    // Eye-space clustering alone (same VPLs as a 32^2 regular grid).
+    const Image regular = renderIndirect(*scene, "isr", {{"rsmSize", "128"}, {"vplMode", "regular"}, {"vplGrid", "32"}}, kSize);
+    const Image rsm32 = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "32"}}, kSize);
+    // Eye- and light-space clustering combined.
+    const Image clusters = renderIndirect(*scene, "isr", {{"rsmSize", "128"}, {"lightFinest", "64"}}, kSize);
+    const double eyeOnly = relativeRmsError(regular, rsm32);
+    const double combined = relativeRmsError(clusters, limit);
+    RecordProperty("eyeClusteringRelRms", std::to_string(eyeOnly));
+    RecordProperty("combinedRelRms", std::to_string(combined));
+    // Thesis R6: 2-3 % RMS from eye-space clustering, 5-6 % combined (1024^2 image, 1024^2 RSM). Measured
+    // here (64^2 image, 128^2 RSM limit): 3.0 % and 10.3 %; at 64^2 the 16^2 coarsest level covers 16x
+    // more of the image than at 1024^2, so the combined bound is wider than the thesis's figure.
+    EXPECT_LT(eyeOnly, 0.05);
+    EXPECT_LT(combined, 0.15);
+}
+
+TEST_F(IsrGpuTest, EnergyDoesNotGrowWithRefinementDepth) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 64;
+    const std::map<std::string, std::string> common = {{"rsmSize", "64"}, {"vplMode", "regular"}, {"vplGrid", "16"}};
+    double fullResolution = 0.0;
+    for (int coarsest : {64, 32, 16, 8, 4}) {
+        auto settings = common;
+        settings["eyeCoarsest"] = std::to_string(coarsest);
+        const double energy = totalRadiance(renderIndirect(*scene, "isr", settings, kSize));
+        if (coarsest == kSize) {
+            fullResolution = energy;  // one level: every pixel gathers, the reference depth
+            ASSERT_GT(energy, 0.0);
+            continue;
+        }
+        // Empty-aware upsampling only redistributes: 3 % for the irradiance a coarse patch's mean
+        // position and normal assign to the pixels below it.
+        EXPECT_LE(energy, fullResolution * 1.03) << "coarsest " << coarsest;
+        EXPECT_GE(energy, fullResolution * 0.97) << "coarsest " << coarsest;
+    }
+}
+
+TEST_F(IsrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
+    for (const BuiltinSceneInfo& info : builtinScenes()) {
+        auto scene = loadScene(info.name);
+        ASSERT_TRUE(scene.ok()) << info.name;
+        const Image indirect = renderIndirect(*scene, "isr", {{"rsmSize", "32"}, {"lightFinest", "32"}}, 32);
+        EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
+        if (info.name == "furnace") {
+            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+        }
+    }
+}

@@ -1,0 +1,102 @@
+#pragma once
+// Helpers of the Nichols (2010) technique tests (rsm, isr): render a technique's indirect light with
+// settings, a plane scene for closed-form RSM fluxes, and the error measures of the thesis's
+// Figs. 4.9/4.13 (relative RMS error against the million-VPL gather).
+#include "core/Settings.h"
+#include "render/RenderSettings.h"
+#include "scene/SceneLoader.h"
+#include "techniques/Pipeline.h"
+#include "techniques/Registry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace bounce::nicholstest {
+
+inline render::RenderSettings smallRenderSettings() {
+    render::RenderSettings s;
+    s.shadowMapSize = 256;  // llvmpipe: small maps keep each test to seconds
+    return s;
+}
+
+inline std::unique_ptr<Pipeline> makePipeline(const Scene& scene, const std::string& technique,
+                                              const std::map<std::string, std::string>& settings, int size) {
+    auto t = createTechnique(technique);
+    EXPECT_TRUE(t.ok());
+    auto applied = applySettings(**t, settings, technique);
+    EXPECT_TRUE(applied.ok()) << applied.error().message;
+    auto p = Pipeline::create(scene, std::move(*t), {size, size}, smallRenderSettings());
+    EXPECT_TRUE(p.ok()) << p.error().message;
+    return std::move(*p);
+}
+
+inline Image renderIndirect(const Scene& scene, const std::string& technique,
+                            const std::map<std::string, std::string>& settings, int size) {
+    auto p = makePipeline(scene, technique, settings, size);
+    p->renderFrame(0);
+    return p->readback(Component::Indirect);
+}
+
+// sqrt(sum (x - r)^2 / sum r^2): the RMS error relative to the reference's RMS (Figs. 4.9, 4.13).
+inline double relativeRmsError(const Image& test, const Image& reference) {
+    double num = 0.0, den = 0.0;
+    for (int y = 0; y < test.height(); ++y)
+        for (int x = 0; x < test.width(); ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double d = double(test.at(x, y)[c]) - reference.at(x, y)[c];
+                num += d * d;
+                den += double(reference.at(x, y)[c]) * reference.at(x, y)[c];
+            }
+    return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
+inline double totalRadiance(const Image& image) {
+    double sum = 0.0;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) sum += double(image.at(x, y).r) + image.at(x, y).g + image.at(x, y).b;
+    return sum;
+}
+
+inline bool finiteAndNonNegative(const Image& image) {
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x)
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(image.at(x, y)[c]) || image.at(x, y)[c] < 0.0f) return false;
+    return true;
+}
+
+constexpr float kPlaneAlbedo = 0.5f;
+constexpr float kPlaneHalf = 2.0f;  // metres
+
+// A horizontal grey plane (y = 0, half-size kPlaneHalf) under `light`, seen from above.
+inline Scene planeScene(const Light& light) {
+    Scene s;
+    s.name = "plane";
+    Mesh m;
+    m.name = "plane";
+    m.positions = {{-kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, kPlaneHalf}, {-kPlaneHalf, 0, kPlaneHalf}};
+    m.normals.assign(4, glm::vec3(0, 1, 0));
+    m.indices = {0, 2, 1, 0, 3, 2};
+    s.meshes.push_back(m);
+    Material mat;
+    mat.name = "grey";
+    mat.baseColor = glm::vec3(kPlaneAlbedo);
+    s.materials.push_back(mat);
+    Object o;
+    o.name = "plane";
+    s.objects.push_back(o);
+    s.lights.push_back(light);
+    s.camera.position = {0, 5, 0.01f};
+    s.camera.target = {0, 0, 0};
+    s.camera.up = {0, 0, -1};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 10.0f;
+    EXPECT_TRUE(finalizeScene(s).ok());
+    return s;
+}
+
+}  // namespace bounce::nicholstest
