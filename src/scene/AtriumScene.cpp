@@ -16,7 +16,7 @@ namespace bounce {
 
 namespace {
 
-// Layout (metres). The courtyard is x in [-kHalfWidth, kHalfWidth], z in [-kHalfLength, kHalfLength].
+// Layout (metres; a design, loosely Sponza-sized, not measured data). The courtyard is x in [-kHalfWidth, kHalfWidth], z in [-kHalfLength, kHalfLength].
 constexpr float kHalfWidth = 6.0f;
 constexpr float kHalfLength = 10.0f;
 constexpr float kWallHeight = 9.0f;
@@ -30,6 +30,18 @@ constexpr float kBayHalfSpan = 0.5f * kColumnSpacing;
 constexpr float kBayInnerRadius = kBayHalfSpan - kColumnRadius;  // the arch springs from the column faces
 constexpr float kColumnHeight = kStoreyHeight - kBayHalfSpan;    // bay top meets the next floor
 constexpr float kBayDepth = 2.0f * kColumnRadius;
+// Drapes: hung behind the upper arcade, folds as a sine across their width that deepens downward.
+constexpr float kDrapeSetBack = 0.6f;      // behind the column axis
+constexpr float kDrapeTopBelowRoof = 0.3f;
+constexpr float kDrapeLength = 2.6f;
+constexpr float kDrapeHalfWidth = 0.7f;
+constexpr float kDrapeFoldDepth = 0.08f;
+constexpr float kDrapeFolds = 3.0f;        // sine periods across the width
+// Fountain in the middle of the courtyard.
+constexpr float kBasinRadius = 1.5f;
+constexpr float kBasinHeight = 0.6f;
+constexpr float kSpoutRadius = 0.2f;
+constexpr float kSpoutHeight = 1.8f;
 
 // Budget limits for the `triangles` parameter.
 constexpr double kDefaultTriangles = 100000.0;
@@ -111,9 +123,10 @@ void generate(const Tessellation& t, bool countOnly, std::deque<Part>& parts) {
                 arches.archBay({cx, springing, z}, {0, 0, 1}, {1, 0, 0}, kBayHalfSpan, kBayInnerRadius, kBayDepth,
                                t.baySegments);
             }
-            // End piers tie each row's end bays to the end walls.
+            // End piers tie each row to the end walls. They reach the end columns' axes, where the end bays'
+            // open ends are, so no gap shows the inside of a bay.
             const float top = (storey + 1) * kStoreyHeight;
-            const float endZ = -L + kBayHalfSpan - kColumnRadius;
+            const float endZ = -L + kBayHalfSpan;
             columns.axisBox({cx - kColumnRadius, base, -L}, {cx + kColumnRadius, top, endZ}, true, 1);
             columns.axisBox({cx - kColumnRadius, base, -endZ}, {cx + kColumnRadius, top, L}, true, 1);
             // Gallery floor (storey 0) and roof (storey 1) from the arcade to the side wall.
@@ -125,14 +138,16 @@ void generate(const Tessellation& t, bool countOnly, std::deque<Part>& parts) {
             const int colour = b % 3;
             MeshBuilder& drape = part(prefix + drapeNames[colour], drapeMaterials[colour]);
             const float zc = -L + 2.0f * kBayHalfSpan + kColumnSpacing * static_cast<float>(b);
-            const float xd = cx + sx * 0.6f;                 // 0.6 m behind the arcade
-            const float yTop = 2.0f * kStoreyHeight - 0.3f;  // hung just under the roof
-            const float dropLength = 2.6f, halfWidth = 0.7f, foldDepth = 0.08f, folds = 3.0f;
+            const float xd = cx + sx * kDrapeSetBack;
+            const float yTop = 2.0f * kStoreyHeight - kDrapeTopBelowRoof;
             drape.surface(
                 t.drapeCellsU, t.drapeCellsV,
                 [=](float u, float v) {
-                    const float fold = foldDepth * std::sin(glm::two_pi<float>() * folds * u) * (0.4f + 0.6f * v);
-                    return glm::vec3(xd + fold, yTop - dropLength * v, zc - halfWidth + 2.0f * halfWidth * u);
+                    // Folds 40 % as deep at the top, where the cloth is held, as at the hem.
+                    const float fold =
+                        kDrapeFoldDepth * std::sin(glm::two_pi<float>() * kDrapeFolds * u) * (0.4f + 0.6f * v);
+                    return glm::vec3(xd + fold, yTop - kDrapeLength * v,
+                                     zc - kDrapeHalfWidth + 2.0f * kDrapeHalfWidth * u);
                 },
                 {-sx, 0, 0});
         }
@@ -141,11 +156,11 @@ void generate(const Tessellation& t, bool countOnly, std::deque<Part>& parts) {
     // Fountain: a basin wall, its water surface and a central spout column.
     MeshBuilder& fountain = part("fountain", kStone);
     // The water is level with the rim so the basin wall, one-sided, is only ever seen from outside.
-    fountain.cylinder({0, 0, 0}, 1.5f, 0.6f, t.fountainSegments, 1);
-    fountain.cylinder({0, 0, 0}, 0.2f, 1.8f, t.columnSegments, t.columnRings);
-    fountain.disk({0, 1.8f, 0}, 0.2f, up, t.columnSegments);
+    fountain.cylinder({0, 0, 0}, kBasinRadius, kBasinHeight, t.fountainSegments, 1);
+    fountain.cylinder({0, 0, 0}, kSpoutRadius, kSpoutHeight, t.columnSegments, t.columnRings);
+    fountain.disk({0, kSpoutHeight, 0}, kSpoutRadius, up, t.columnSegments);
     MeshBuilder& water = part("fountain-water", kWater);
-    water.disk({0, 0.6f, 0}, 1.5f, up, t.fountainSegments);
+    water.disk({0, kBasinHeight, 0}, kBasinRadius, up, t.fountainSegments);
 }
 
 size_t countTriangles(double density) {
@@ -166,7 +181,7 @@ Expected<Scene> buildAtrium(const SceneParams& params) {
     // Every tessellation level is non-decreasing in the density, so the count is too: bisect.
     double lo = 0.0, hi = 1.0;
     while (static_cast<double>(countTriangles(hi)) < target) hi *= 2.0;
-    constexpr int kBisections = 40;  // far below one triangle of resolution at any budget
+    constexpr int kBisections = 30;  // density to 1e-9 relative: below one tessellation step at any budget
     for (int i = 0; i < kBisections; ++i) {
         const double mid = 0.5 * (lo + hi);
         (static_cast<double>(countTriangles(mid)) < target ? lo : hi) = mid;
@@ -224,7 +239,7 @@ Expected<Scene> buildAtrium(const SceneParams& params) {
     s.lights.push_back(sun);
 
     // Standing near the south wall at eye height, looking north along the courtyard and a little up.
-    s.camera.position = glm::vec3(0.0f, 1.7f, kHalfLength - 1.0f);
+    s.camera.position = glm::vec3(0.0f, 1.7f, kHalfLength - 1.0f);  // metres; 1.7 m eye height
     s.camera.target = glm::vec3(0.0f, 3.5f, -kHalfLength);
     s.camera.verticalFov = glm::radians(60.0f);
     s.camera.nearPlane = 0.05f;  // metres

@@ -40,7 +40,7 @@ Expected<Scene> buildFurnace(const SceneParams& params) {
     s.objects.push_back(o);
 
     // Inside, off-centre so the view holds a wall, the floor and a corner (any view reads Le/(1-rho)).
-    s.camera.position = glm::vec3(0.3f, 0.2f, 0.6f);
+    s.camera.position = glm::vec3(0.3f, 0.2f, 0.6f);  // metres
     s.camera.target = glm::vec3(-0.2f, -0.3f, -1.0f);
     s.camera.verticalFov = glm::radians(60.0f);
     s.camera.nearPlane = 0.01f;  // metres

@@ -1,6 +1,8 @@
 #include "scene/SceneLoader.h"
 
 #include "scene/BuiltinScenes.h"
+#include "scene/JsonSceneLoader.h"
+#include "scene/ModelLoader.h"
 
 #include <algorithm>
 #include <cctype>
@@ -87,7 +89,14 @@ Expected<Scene> loadScene(std::string_view nameOrPath, const SceneParams& params
     if (!isFile)
         return makeError("unknown scene '{}' (built-ins: {}; or a scene file .json .gltf .glb .obj .ply)", name,
                          knownBuiltins());
-    return makeError("{}: loading scene files is not available in this build", name);
+    if (!params.empty())
+        return makeError("{}: scene parameters ({}) apply to built-in scenes only", name, params.begin()->first);
+    const std::filesystem::path path(name);
+    if (!std::filesystem::exists(path)) return makeError("{}: scene file not found", name);
+    Expected<Scene> scene = ext == ".json" ? loadJsonScene(path) : loadModelScene(path);
+    if (!scene.ok()) return scene.error();
+    BOUNCE_TRY_VOID(finalizeScene(*scene));
+    return scene;
 }
 
 }  // namespace bounce

@@ -83,7 +83,7 @@ Expected<Scene> buildTwoRooms(const SceneParams& params) {
 
     // Looking down from above, slightly over the dark room so the dark face of the shared wall is in view.
     // The camera stays inside the rooms' footprint, so every outer wall is seen from its front side.
-    s.camera.position = glm::vec3(0.3f, 5.0f, 0.4f);
+    s.camera.position = glm::vec3(0.3f, 5.0f, 0.4f);  // metres
     s.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
     s.camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
     s.camera.verticalFov = glm::radians(50.0f);

@@ -1,0 +1,499 @@
+#include "scene/JsonSceneLoader.h"
+
+#include "core/ImageIo.h"
+#include "core/Log.h"
+#include "scene/JsonLocator.h"
+#include "scene/ModelLoader.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace bounce {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+std::string joinKeys(const std::set<std::string>& keys) {
+    std::string out;
+    for (const std::string& k : keys) out += (out.empty() ? "" : ", ") + k;
+    return out;
+}
+
+// Reads one scene file, turning each JSON value into scene data with "file:line: what" errors.
+class JsonSceneReader {
+public:
+    JsonSceneReader(const fs::path& path, const std::string& text) : m_path(path), m_locator(text) {}
+
+    Expected<Scene> read(const json& root) {
+        Scene& s = m_scene;
+        s.source = m_path.string();
+        s.name = m_path.stem().string();
+        BOUNCE_TRY_VOID(expectObject(root, "", "the scene file"));
+        BOUNCE_TRY_VOID(checkKeys(root, "", "scene", {"name", "frameRate", "settings", "camera", "materials", "objects", "lights"}));
+        if (root.contains("name")) {
+            BOUNCE_TRY(s.name, text(root["name"], "/name"));
+        }
+        if (root.contains("frameRate")) {
+            BOUNCE_TRY(s.frameRate, number(root["frameRate"], "/frameRate", 1e-3f, 1e4f));
+        }
+        if (root.contains("settings")) BOUNCE_TRY_VOID(settings(root["settings"], "/settings"));
+        if (root.contains("materials")) BOUNCE_TRY_VOID(materials(root["materials"], "/materials"));
+        if (!root.contains("objects")) return err("", "no \"objects\": a scene needs at least one object");
+        BOUNCE_TRY_VOID(objects(root["objects"], "/objects"));
+        if (root.contains("lights")) BOUNCE_TRY_VOID(lights(root["lights"], "/lights"));
+        if (root.contains("camera")) {
+            BOUNCE_TRY_VOID(camera(root["camera"], "/camera"));
+        } else if (!m_cameraFromModel) {
+            return err("", "no \"camera\" (and no model supplied one)");
+        }
+        return std::move(m_scene);
+    }
+
+private:
+    template <class... Args>
+    Error err(const std::string& pointer, fmt::format_string<Args...> format, Args&&... args) const {
+        const int line = m_locator.line(pointer);
+        const std::string where = line > 0 ? fmt::format("{}:{}", m_path.string(), line) : m_path.string();
+        return Error{where + ": " + fmt::format(format, std::forward<Args>(args)...)};
+    }
+
+    std::string origin(const std::string& pointer) const {
+        const int line = m_locator.line(pointer);
+        return line > 0 ? fmt::format("{}:{}", m_path.string(), line) : m_path.string();
+    }
+
+    Expected<void> expectObject(const json& j, const std::string& p, const std::string& what) const {
+        if (!j.is_object()) return err(p, "{} must be a JSON object", what);
+        return {};
+    }
+
+    Expected<void> checkKeys(const json& j, const std::string& p, const std::string& what,
+                             const std::set<std::string>& known) const {
+        for (const auto& [key, value] : j.items())
+            if (!known.count(key))
+                return err(p + "/" + key, "{}: unknown key \"{}\" (known: {})", what, key, joinKeys(known));
+        return {};
+    }
+
+    Expected<std::string> text(const json& j, const std::string& p) const {
+        if (!j.is_string()) return err(p, "expected a string");
+        return j.get<std::string>();
+    }
+
+    Expected<bool> boolean(const json& j, const std::string& p) const {
+        if (!j.is_boolean()) return err(p, "expected true or false");
+        return j.get<bool>();
+    }
+
+    Expected<float> number(const json& j, const std::string& p, float lo = -kInf, float hi = kInf) const {
+        if (!j.is_number()) return err(p, "expected a number");
+        const double v = j.get<double>();
+        if (!std::isfinite(v)) return err(p, "value is not finite");
+        if (v < lo || v > hi) return err(p, "value {} is outside [{}, {}]", v, lo, hi);
+        return static_cast<float>(v);
+    }
+
+    Expected<glm::vec3> vec3(const json& j, const std::string& p) const {
+        if (!j.is_array() || j.size() != 3) return err(p, "expected an array of 3 numbers");
+        glm::vec3 v(0.0f);
+        for (int i = 0; i < 3; ++i) {
+            BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i)));
+        }
+        return v;
+    }
+
+    // A colour or radiometric triple: a number (grey) or [r, g, b], each in [lo, hi].
+    Expected<glm::vec3> rgb(const json& j, const std::string& p, float lo, float hi) const {
+        if (j.is_number()) {
+            BOUNCE_TRY(const float v, number(j, p, lo, hi));
+            return glm::vec3(v);
+        }
+        if (!j.is_array() || j.size() != 3) return err(p, "expected a number or an array [r, g, b]");
+        glm::vec3 v(0.0f);
+        for (int i = 0; i < 3; ++i) {
+            BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i), lo, hi));
+        }
+        return v;
+    }
+
+    Expected<glm::quat> rotation(const json& j, const std::string& p) const {
+        BOUNCE_TRY_VOID(expectObject(j, p, "rotation"));
+        BOUNCE_TRY_VOID(checkKeys(j, p, "rotation", {"axis", "degrees"}));
+        if (!j.contains("axis") || !j.contains("degrees")) return err(p, "rotation needs \"axis\" and \"degrees\"");
+        BOUNCE_TRY(const glm::vec3 axis, vec3(j["axis"], p + "/axis"));
+        if (!(glm::length(axis) > 0.0f)) return err(p + "/axis", "rotation axis is zero");
+        BOUNCE_TRY(const float degrees, number(j["degrees"], p + "/degrees"));
+        return glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
+    }
+
+    // A uniform scale (number) or per-axis [x, y, z].
+    Expected<glm::vec3> scale(const json& j, const std::string& p) const {
+        glm::vec3 s(0.0f);
+        if (j.is_number()) {
+            BOUNCE_TRY(const float v, number(j, p));
+            s = glm::vec3(v);
+        } else {
+            BOUNCE_TRY(s, vec3(j, p));
+        }
+        if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) return err(p, "scale has a zero component");
+        return s;
+    }
+
+    // Translation, rotation and scale of a transform or a keyframe (fields absent: identity).
+    Expected<void> trs(const json& j, const std::string& p, TransformKey& key) const {
+        if (j.contains("translation")) {
+            BOUNCE_TRY(key.translation, vec3(j["translation"], p + "/translation"));
+        }
+        if (j.contains("rotation")) {
+            BOUNCE_TRY(key.rotation, rotation(j["rotation"], p + "/rotation"));
+        }
+        if (j.contains("scale")) {
+            BOUNCE_TRY(key.scale, scale(j["scale"], p + "/scale"));
+        }
+        return {};
+    }
+
+    Expected<glm::mat4> transform(const json& j, const std::string& p) const {
+        BOUNCE_TRY_VOID(expectObject(j, p, "transform"));
+        BOUNCE_TRY_VOID(checkKeys(j, p, "transform", {"translation", "rotation", "scale"}));
+        TransformKey key;
+        BOUNCE_TRY_VOID(trs(j, p, key));
+        return glm::translate(glm::mat4(1.0f), key.translation) * glm::toMat4(key.rotation) *
+               glm::scale(glm::mat4(1.0f), key.scale);
+    }
+
+    Expected<TransformTrack> animation(const json& j, const std::string& p) const {
+        BOUNCE_TRY_VOID(expectObject(j, p, "animation"));
+        BOUNCE_TRY_VOID(checkKeys(j, p, "animation", {"interpolation", "loop", "keys"}));
+        TransformTrack track;
+        if (j.contains("interpolation")) {
+            BOUNCE_TRY(const std::string mode, text(j["interpolation"], p + "/interpolation"));
+            if (mode == "linear") track.interpolation = Interpolation::Linear;
+            else if (mode == "catmull-rom") track.interpolation = Interpolation::CatmullRom;
+            else return err(p + "/interpolation", "unknown interpolation \"{}\" (known: linear, catmull-rom)", mode);
+        }
+        if (j.contains("loop")) {
+            BOUNCE_TRY(track.loop, boolean(j["loop"], p + "/loop"));
+        }
+        if (!j.contains("keys") || !j["keys"].is_array() || j["keys"].empty())
+            return err(p, "animation needs a non-empty \"keys\" array");
+        const json& keys = j["keys"];
+        for (size_t i = 0; i < keys.size(); ++i) {
+            const std::string kp = p + "/keys/" + std::to_string(i);
+            BOUNCE_TRY_VOID(expectObject(keys[i], kp, "animation key"));
+            BOUNCE_TRY_VOID(checkKeys(keys[i], kp, "animation key", {"time", "translation", "rotation", "scale"}));
+            if (!keys[i].contains("time")) return err(kp, "animation key needs \"time\" (seconds)");
+            TransformKey key;
+            BOUNCE_TRY(key.time, number(keys[i]["time"], kp + "/time"));
+            if (!track.keys.empty() && key.time <= track.keys.back().time)
+                return err(kp + "/time", "key times must increase ({} s after {} s)", key.time, track.keys.back().time);
+            BOUNCE_TRY_VOID(trs(keys[i], kp, key));
+            track.keys.push_back(key);
+        }
+        return track;
+    }
+
+    Expected<void> settings(const json& j, const std::string& p) {
+        BOUNCE_TRY_VOID(expectObject(j, p, "settings"));
+        for (const auto& [key, value] : j.items()) {
+            const std::string vp = p + "/" + key;
+            if (key.find('.') == std::string::npos) return err(vp, "setting \"{}\" is not of the form technique.setting", key);
+            if (value.is_string()) m_scene.settings[key] = value.get<std::string>();
+            else if (value.is_number() || value.is_boolean()) m_scene.settings[key] = value.dump();
+            else return err(vp, "setting \"{}\" must be a string, number or boolean", key);
+        }
+        return {};
+    }
+
+    Expected<void> materials(const json& j, const std::string& p) {
+        BOUNCE_TRY_VOID(expectObject(j, p, "materials (name -> material)"));
+        for (const auto& [name, value] : j.items()) {
+            BOUNCE_TRY(Material m, material(value, p + "/" + name, name));
+            m_materialIndex[name] = static_cast<uint32_t>(m_scene.materials.size());
+            m_scene.materials.push_back(std::move(m));
+        }
+        return {};
+    }
+
+    Expected<Material> material(const json& j, const std::string& p, const std::string& name) {
+        const std::string what = fmt::format("material '{}'", name);
+        BOUNCE_TRY_VOID(expectObject(j, p, what));
+        BOUNCE_TRY_VOID(checkKeys(j, p, what,
+                                  {"baseColor", "baseColorTexture", "emission", "roughness", "metallic", "specularF0", "twoSided"}));
+        Material m;
+        m.name = name;
+        if (j.contains("baseColor")) {
+            BOUNCE_TRY(m.baseColor, rgb(j["baseColor"], p + "/baseColor", 0.0f, 1.0f));
+        }
+        if (j.contains("emission")) {
+            BOUNCE_TRY(m.emission, rgb(j["emission"], p + "/emission", 0.0f, kInf));
+        }
+        if (j.contains("roughness")) {
+            BOUNCE_TRY(m.roughness, number(j["roughness"], p + "/roughness", 0.0f, 1.0f));
+        }
+        if (j.contains("metallic")) {
+            BOUNCE_TRY(m.metallic, number(j["metallic"], p + "/metallic", 0.0f, 1.0f));
+        }
+        if (j.contains("specularF0")) {
+            BOUNCE_TRY(m.specularF0, number(j["specularF0"], p + "/specularF0", 0.0f, 1.0f));
+        }
+        if (j.contains("twoSided")) {
+            BOUNCE_TRY(m.twoSided, boolean(j["twoSided"], p + "/twoSided"));
+        }
+        if (j.contains("baseColorTexture")) {
+            BOUNCE_TRY(const std::string rel, text(j["baseColorTexture"], p + "/baseColorTexture"));
+            const fs::path file = m_path.parent_path() / rel;
+            Expected<Image> image = fs::exists(file) ? readImage(file)
+                                                     : Expected<Image>(makeError("{}: file not found", file.string()));
+            if (image.ok()) {
+                m.baseColorTexture = static_cast<int>(m_scene.textures.size());
+                m_scene.textures.push_back({file.string(), std::move(image.value())});
+            } else {
+                spdlog::warn("{}: {}: texture unusable, using the base colour: {}", origin(p + "/baseColorTexture"),
+                             what, image.error().message);
+            }
+        }
+        return m;
+    }
+
+    Expected<void> objects(const json& j, const std::string& p) {
+        if (!j.is_array() || j.empty()) return err(p, "\"objects\" must be a non-empty array");
+        for (size_t i = 0; i < j.size(); ++i) BOUNCE_TRY_VOID(object(j[i], p + "/" + std::to_string(i), i));
+        return {};
+    }
+
+    Expected<void> object(const json& j, const std::string& p, size_t index) {
+        BOUNCE_TRY_VOID(expectObject(j, p, "an object"));
+        std::string name = fmt::format("object-{}", index);
+        if (j.contains("name")) {
+            BOUNCE_TRY(name, text(j["name"], p + "/name"));
+        }
+        const std::string what = fmt::format("object '{}'", name);
+        BOUNCE_TRY_VOID(checkKeys(j, p, what, {"name", "model", "transform", "material", "animation", "lights", "camera"}));
+        if (!j.contains("model")) return err(p, "{}: needs \"model\" (a .gltf .glb .obj .ply path)", what);
+        BOUNCE_TRY(const std::string rel, text(j["model"], p + "/model"));
+        ModelPlacement placement;
+        placement.name = name;
+        placement.origin = origin(p + "/model") + ": " + what;
+        if (j.contains("transform")) {
+            BOUNCE_TRY(placement.transform, transform(j["transform"], p + "/transform"));
+        }
+        if (j.contains("material")) {
+            const std::string mp = p + "/material";
+            if (j["material"].is_string()) {
+                const std::string ref = j["material"].get<std::string>();
+                const auto it = m_materialIndex.find(ref);
+                if (it == m_materialIndex.end()) {
+                    std::set<std::string> known;
+                    for (const auto& [k, v] : m_materialIndex) known.insert(k);
+                    return err(mp, "{}: unknown material \"{}\" (known: {})", what, ref,
+                               known.empty() ? "none" : joinKeys(known));
+                }
+                placement.materialOverride = static_cast<int>(it->second);
+            } else {
+                BOUNCE_TRY(Material m, material(j["material"], mp, name));
+                placement.materialOverride = static_cast<int>(m_scene.materials.size());
+                m_scene.materials.push_back(std::move(m));
+            }
+        }
+        placement.importLights = false;
+        placement.importCamera = false;
+        if (j.contains("lights")) {
+            BOUNCE_TRY(placement.importLights, boolean(j["lights"], p + "/lights"));
+        }
+        if (j.contains("camera")) {
+            BOUNCE_TRY(placement.importCamera, boolean(j["camera"], p + "/camera"));
+        }
+        TransformTrack track;
+        if (j.contains("animation")) {
+            BOUNCE_TRY(track, animation(j["animation"], p + "/animation"));
+        }
+        const size_t first = m_scene.objects.size();
+        BOUNCE_TRY(const ModelImportResult result, appendModel(m_scene, m_path.parent_path() / rel, placement));
+        m_cameraFromModel = m_cameraFromModel || result.camera;
+        // worldFromObject(t) = animation(t) * transform: the track moves the placed model as a whole.
+        for (size_t o = first; o < m_scene.objects.size(); ++o) m_scene.objects[o].animation = track;
+        return {};
+    }
+
+    Expected<void> lights(const json& j, const std::string& p) {
+        if (!j.is_array()) return err(p, "\"lights\" must be an array");
+        for (size_t i = 0; i < j.size(); ++i) BOUNCE_TRY_VOID(light(j[i], p + "/" + std::to_string(i), i));
+        return {};
+    }
+
+    Expected<void> light(const json& j, const std::string& p, size_t index) {
+        BOUNCE_TRY_VOID(expectObject(j, p, "a light"));
+        Light l;
+        l.name = fmt::format("light-{}", index);
+        if (j.contains("name")) {
+            BOUNCE_TRY(l.name, text(j["name"], p + "/name"));
+        }
+        const std::string what = fmt::format("light '{}'", l.name);
+        if (!j.contains("type")) return err(p, "{}: needs \"type\" (point, spot, directional, area)", what);
+        BOUNCE_TRY(const std::string type, text(j["type"], p + "/type"));
+        std::set<std::string> keys = {"name", "type", "animation"};
+        if (type == "point") {
+            l.type = LightType::Point;
+            keys.insert({"position", "intensity"});
+        } else if (type == "spot") {
+            l.type = LightType::Spot;
+            keys.insert({"position", "direction", "target", "intensity", "cutoffDegrees", "falloffExponent"});
+        } else if (type == "directional") {
+            l.type = LightType::Directional;
+            keys.insert({"direction", "irradiance"});
+        } else if (type == "area") {
+            l.type = LightType::Area;
+            keys.insert({"position", "edgeU", "edgeV", "radiance"});
+        } else {
+            return err(p + "/type", "{}: unknown type \"{}\" (known: point, spot, directional, area)", what, type);
+        }
+        BOUNCE_TRY_VOID(checkKeys(j, p, what + " (" + type + ")", keys));
+        const auto need = [&](const char* key) -> Expected<void> {
+            if (!j.contains(key)) return err(p, "{}: a {} light needs \"{}\"", what, type, key);
+            return {};
+        };
+        if (keys.count("position")) {
+            BOUNCE_TRY_VOID(need("position"));
+            BOUNCE_TRY(l.position, vec3(j["position"], p + "/position"));
+        }
+        if (keys.count("intensity")) {
+            BOUNCE_TRY_VOID(need("intensity"));
+            BOUNCE_TRY(l.intensity, rgb(j["intensity"], p + "/intensity", 0.0f, kInf));
+        }
+        if (l.type == LightType::Spot) {
+            if (j.contains("direction") == j.contains("target"))
+                return err(p, "{}: a spot light needs exactly one of \"direction\" and \"target\"", what);
+            if (j.contains("direction")) {
+                BOUNCE_TRY(l.direction, vec3(j["direction"], p + "/direction"));
+            } else {
+                BOUNCE_TRY(const glm::vec3 target, vec3(j["target"], p + "/target"));
+                l.direction = target - l.position;
+            }
+            BOUNCE_TRY_VOID(need("cutoffDegrees"));
+            BOUNCE_TRY(const float cutoff, number(j["cutoffDegrees"], p + "/cutoffDegrees", 0.0f, 180.0f));
+            if (!(cutoff > 0.0f)) return err(p + "/cutoffDegrees", "{}: spot cutoff must be positive", what);
+            l.cutoffAngle = glm::radians(cutoff);
+            if (j.contains("falloffExponent")) {
+                BOUNCE_TRY(l.falloffExponent, number(j["falloffExponent"], p + "/falloffExponent", 0.0f, kInf));
+            }
+        }
+        if (l.type == LightType::Directional) {
+            BOUNCE_TRY_VOID(need("direction"));
+            BOUNCE_TRY(l.direction, vec3(j["direction"], p + "/direction"));
+            BOUNCE_TRY_VOID(need("irradiance"));
+            BOUNCE_TRY(l.irradiance, rgb(j["irradiance"], p + "/irradiance", 0.0f, kInf));
+        }
+        if (l.type == LightType::Spot || l.type == LightType::Directional) {
+            if (!(glm::length(l.direction) > 0.0f)) return err(p, "{}: zero direction", what);
+            l.direction = glm::normalize(l.direction);
+        }
+        if (l.type == LightType::Area) {
+            BOUNCE_TRY_VOID(need("edgeU"));
+            BOUNCE_TRY_VOID(need("edgeV"));
+            BOUNCE_TRY_VOID(need("radiance"));
+            BOUNCE_TRY(l.edgeU, vec3(j["edgeU"], p + "/edgeU"));
+            BOUNCE_TRY(l.edgeV, vec3(j["edgeV"], p + "/edgeV"));
+            BOUNCE_TRY(l.radiance, rgb(j["radiance"], p + "/radiance", 0.0f, kInf));
+            if (!(l.area() > 0.0f)) return err(p, "{}: area light edges span zero area", what);
+        }
+        if (j.contains("animation")) {
+            BOUNCE_TRY(l.animation, animation(j["animation"], p + "/animation"));
+        }
+        m_scene.lights.push_back(std::move(l));
+        return {};
+    }
+
+    Expected<void> camera(const json& j, const std::string& p) {
+        BOUNCE_TRY_VOID(expectObject(j, p, "camera"));
+        BOUNCE_TRY_VOID(checkKeys(j, p, "camera",
+                                  {"position", "target", "up", "fovDegrees", "projection", "orthoHeight", "near", "far", "animation"}));
+        Camera& c = m_scene.camera;
+        if (!j.contains("position") || !j.contains("target")) return err(p, "camera needs \"position\" and \"target\"");
+        BOUNCE_TRY(c.position, vec3(j["position"], p + "/position"));
+        BOUNCE_TRY(c.target, vec3(j["target"], p + "/target"));
+        if (c.position == c.target) return err(p + "/target", "camera target equals its position");
+        if (j.contains("up")) {
+            BOUNCE_TRY(c.up, vec3(j["up"], p + "/up"));
+        }
+        if (j.contains("projection")) {
+            BOUNCE_TRY(const std::string proj, text(j["projection"], p + "/projection"));
+            if (proj == "perspective") c.projection = Projection::Perspective;
+            else if (proj == "orthographic") c.projection = Projection::Orthographic;
+            else return err(p + "/projection", "unknown projection \"{}\" (known: perspective, orthographic)", proj);
+        }
+        if (j.contains("fovDegrees")) {
+            BOUNCE_TRY(const float fov, number(j["fovDegrees"], p + "/fovDegrees", 0.0f, 180.0f));
+            if (!(fov > 0.0f && fov < 180.0f)) return err(p + "/fovDegrees", "field of view must be in (0, 180) degrees");
+            c.verticalFov = glm::radians(fov);
+        }
+        if (j.contains("orthoHeight")) {
+            BOUNCE_TRY(c.orthoHeight, number(j["orthoHeight"], p + "/orthoHeight", 1e-6f, kInf));
+        }
+        if (j.contains("near")) {
+            BOUNCE_TRY(c.nearPlane, number(j["near"], p + "/near", 1e-6f, kInf));
+        }
+        if (j.contains("far")) {
+            BOUNCE_TRY(c.farPlane, number(j["far"], p + "/far", 1e-6f, kInf));
+        }
+        if (j.contains("animation")) {
+            BOUNCE_TRY(c.animation, animation(j["animation"], p + "/animation"));
+        }
+        return {};
+    }
+
+    fs::path m_path;
+    JsonLocator m_locator;
+    Scene m_scene;
+    std::map<std::string, uint32_t> m_materialIndex;
+    bool m_cameraFromModel = false;
+};
+
+}  // namespace
+
+Expected<Scene> loadJsonScene(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return makeError("{}: cannot open scene file", path.string());
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    const std::string text = buffer.str();
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // e.byte is the 1-based offset just past the offending character.
+        const auto [line, column] = JsonLocator::lineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
+        std::string what = e.what();
+        // Drop nlohmann's own "[json.exception.parse_error.101] parse error at line L, column C: " prefix.
+        const auto colon = what.find(": ");
+        if (colon != std::string::npos) what = what.substr(colon + 2);
+        return makeError("{}:{}:{}: malformed JSON: {}", path.string(), line, column, what);
+    } catch (const json::out_of_range& e) {
+        // nlohmann reports an overflowing number ("number overflow parsing '1e999'") without a position;
+        // the quoted token locates it.
+        std::string what = e.what();
+        const size_t open = what.find('\''), close = what.rfind('\'');
+        const std::string token = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+        const size_t at = token.empty() ? std::string::npos : text.find(token);
+        if (at == std::string::npos) return makeError("{}: malformed JSON: {}", path.string(), what);
+        const auto [line, column] = JsonLocator::lineColumn(text, at);
+        return makeError("{}:{}:{}: number {} is not finite (overflows)", path.string(), line, column, token);
+    }
+    JsonSceneReader reader(path, text);
+    return reader.read(root);
+}
+
+}  // namespace bounce

@@ -1,0 +1,352 @@
+#include "scene/ModelLoader.h"
+
+#include "core/ImageIo.h"
+#include "core/Log.h"
+#include "core/ToneMap.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+
+namespace bounce {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// KHR_lights_punctual gives candela (point, spot) and lux (directional). bounce's lights are radiometric;
+// 683 lm/W is the luminous efficacy that defines the candela (555 nm), so 1 cd = 1/683 W/sr and
+// 1 lx = 1/683 W/m^2 (docs/scene.md "Model files").
+constexpr float kLumensPerWatt = 683.0f;
+// glTF's dielectric reflectance at normal incidence (glTF 2.0 metallic-roughness model).
+constexpr float kGltfDielectricF0 = 0.04f;
+// Default sun for model files without lights: irradiance on a surface facing it, about 1 W/(m^2 sr) of
+// radiance off an 0.8 albedo surface facing it (0.8 * 4 / pi), well exposed with ACES at 0 EV.
+constexpr glm::vec3 kDefaultSunIrradiance{4.0f};  // W/m^2
+const glm::vec3 kDefaultSunDirection = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.5f));
+
+enum class Format { Gltf, Obj, Ply };
+
+std::string lowerExtension(const fs::path& p) {
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+glm::mat4 toGlm(const aiMatrix4x4& m) {
+    // assimp matrices are row-major (a1..a4 is the first row); glm is column-major.
+    return glm::transpose(glm::make_mat4(&m.a1));
+}
+
+glm::vec3 toGlm(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+glm::vec3 toGlm(const aiColor3D& c) { return {c.r, c.g, c.b}; }
+
+glm::mat4 globalTransform(const aiNode* node) {
+    glm::mat4 m(1.0f);
+    for (; node; node = node->mParent) m = toGlm(node->mTransformation) * m;
+    return m;
+}
+
+// Decodes an 8-bit sRGB-encoded image (base colour) to linear RGB.
+Image decodeSrgb8(const unsigned char* pixels, int width, int height, int channels) {
+    Image image(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const unsigned char* p = pixels + (static_cast<size_t>(y) * width + x) * channels;
+            const auto c = [&](int k) { return srgbDecode(p[std::min(k, channels - 1)] / 255.0f); };
+            image.at(x, y) = channels >= 3 ? glm::vec3(c(0), c(1), c(2)) : glm::vec3(c(0));
+        }
+    return image;
+}
+
+Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what) {
+    if (tex->mHeight == 0) {  // compressed file bytes (PNG, JPEG) of length mWidth
+        int w = 0, h = 0, n = 0;
+        unsigned char* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(tex->pcData),
+                                                    static_cast<int>(tex->mWidth), &w, &h, &n, 0);
+        if (!data) return makeError("{}: cannot decode embedded image ({})", what, stbi_failure_reason());
+        Image image = decodeSrgb8(data, w, h, n);
+        stbi_image_free(data);
+        return image;
+    }
+    std::vector<unsigned char> rgb(static_cast<size_t>(tex->mWidth) * tex->mHeight * 3);
+    for (size_t i = 0; i < static_cast<size_t>(tex->mWidth) * tex->mHeight; ++i) {
+        rgb[3 * i] = tex->pcData[i].r;
+        rgb[3 * i + 1] = tex->pcData[i].g;
+        rgb[3 * i + 2] = tex->pcData[i].b;
+    }
+    return decodeSrgb8(rgb.data(), static_cast<int>(tex->mWidth), static_cast<int>(tex->mHeight), 3);
+}
+
+class Importer {
+public:
+    Importer(Scene& scene, const fs::path& path, const ModelPlacement& placement, Format format)
+        : m_scene(scene), m_path(path), m_placement(placement), m_format(format) {}
+
+    Expected<ModelImportResult> run(const aiScene* ai) {
+        m_ai = ai;
+        m_meshBase = static_cast<uint32_t>(m_scene.meshes.size());
+        m_materialBase = static_cast<uint32_t>(m_scene.materials.size());
+        for (unsigned i = 0; i < ai->mNumMaterials; ++i) m_scene.materials.push_back(material(ai->mMaterials[i], i));
+        m_meshUsable.assign(ai->mNumMeshes, false);
+        for (unsigned i = 0; i < ai->mNumMeshes; ++i) m_scene.meshes.push_back(mesh(ai->mMeshes[i], i));
+        countInstances(ai->mRootNode);
+        const size_t firstObject = m_scene.objects.size();
+        visit(ai->mRootNode, m_placement.transform);
+        m_result.objects = m_scene.objects.size() - firstObject;
+        if (m_result.objects == 0) return makeError("{}: the model has no triangle meshes", where());
+        if (m_placement.importLights)
+            for (unsigned i = 0; i < ai->mNumLights; ++i) BOUNCE_TRY_VOID(light(ai->mLights[i]));
+        if (m_placement.importCamera && ai->mNumCameras > 0) BOUNCE_TRY_VOID(camera(ai->mCameras[0]));
+        return m_result;
+    }
+
+private:
+    std::string where() const { return m_placement.origin.empty() ? m_path.string() : m_placement.origin; }
+
+    Material material(const aiMaterial* am, unsigned index) {
+        Material m;
+        aiString name;
+        m.name = am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0 ? name.C_Str()
+                                                                                : fmt::format("material-{}", index);
+        m.name = m_path.filename().string() + ":" + m.name;
+        aiColor4D colour;
+        if (am->Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS || am->Get(AI_MATKEY_COLOR_DIFFUSE, colour) == AI_SUCCESS)
+            m.baseColor = {colour.r, colour.g, colour.b};
+        aiColor3D emissive;
+        if (am->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS) {
+            m.emission = toGlm(emissive);
+            float strength = 1.0f;  // KHR_materials_emissive_strength
+            if (am->Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS) m.emission *= strength;
+        }
+        if (m_format == Format::Gltf) {
+            float f = 0.0f;
+            if (am->Get(AI_MATKEY_ROUGHNESS_FACTOR, f) == AI_SUCCESS) m.roughness = f;
+            if (am->Get(AI_MATKEY_METALLIC_FACTOR, f) == AI_SUCCESS) m.metallic = f;
+            m.specularF0 = kGltfDielectricF0;
+            int twoSided = 0;
+            m.twoSided = am->Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS && twoSided != 0;
+        } else {
+            // OBJ and PLY: Lambert only; neither format defines face culling, so shade both sides.
+            m.roughness = 1.0f;
+            m.metallic = 0.0f;
+            m.specularF0 = 0.0f;
+            m.twoSided = true;
+        }
+        aiString texPath;
+        if (am->GetTexture(aiTextureType_BASE_COLOR, 0, &texPath) == AI_SUCCESS ||
+            am->GetTexture(aiTextureType_DIFFUSE, 0, &texPath) == AI_SUCCESS)
+            m.baseColorTexture = texture(texPath.C_Str(), m.name);
+        return m;
+    }
+
+    // Index of the texture in the scene, or -1 (with a warning) when it cannot be read.
+    int texture(const std::string& ref, const std::string& materialName) {
+        const auto cached = m_textures.find(ref);
+        if (cached != m_textures.end()) return cached->second;
+        Expected<Image> image = Error{};
+        std::string name;
+        if (const aiTexture* embedded = m_ai->GetEmbeddedTexture(ref.c_str())) {
+            name = fmt::format("{}:{}", m_path.string(), ref);
+            image = decodeEmbedded(embedded, name);
+        } else {
+            std::string rel = ref;
+            std::replace(rel.begin(), rel.end(), '\\', '/');  // MTL files written on Windows
+            const fs::path file = m_path.parent_path() / rel;
+            name = file.string();
+            image = fs::exists(file) ? readImage(file) : Expected<Image>(makeError("{}: file not found", name));
+        }
+        int index = -1;
+        if (image.ok()) {
+            index = static_cast<int>(m_scene.textures.size());
+            m_scene.textures.push_back({name, std::move(image.value())});
+        } else {
+            spdlog::warn("{}: material '{}': texture unusable, using the base colour: {}", where(), materialName,
+                         image.error().message);
+        }
+        m_textures[ref] = index;
+        return index;
+    }
+
+    Mesh mesh(const aiMesh* am, unsigned index) {
+        Mesh m;
+        m.name = am->mName.length > 0 ? am->mName.C_Str() : fmt::format("mesh-{}", index);
+        if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return m;  // points and lines: skipped
+        m.positions.reserve(am->mNumVertices);
+        for (unsigned v = 0; v < am->mNumVertices; ++v) m.positions.push_back(toGlm(am->mVertices[v]));
+        if (am->HasNormals())
+            for (unsigned v = 0; v < am->mNumVertices; ++v) m.normals.push_back(toGlm(am->mNormals[v]));
+        if (am->HasTextureCoords(0))
+            for (unsigned v = 0; v < am->mNumVertices; ++v)
+                m.uvs.push_back({am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y});
+        for (unsigned f = 0; f < am->mNumFaces; ++f) {
+            const aiFace& face = am->mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            m.indices.insert(m.indices.end(), face.mIndices, face.mIndices + 3);
+        }
+        m_meshUsable[index] = !m.indices.empty();
+        return m;
+    }
+
+    void countInstances(const aiNode* node) {
+        for (unsigned i = 0; i < node->mNumMeshes; ++i)
+            if (m_meshUsable[node->mMeshes[i]]) ++m_instances;
+        for (unsigned c = 0; c < node->mNumChildren; ++c) countInstances(node->mChildren[c]);
+    }
+
+    void visit(const aiNode* node, const glm::mat4& parent) {
+        const glm::mat4 world = parent * toGlm(node->mTransformation);
+        for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+            const unsigned meshIndex = node->mMeshes[i];
+            if (!m_meshUsable[meshIndex]) continue;
+            const aiMesh* am = m_ai->mMeshes[meshIndex];
+            Object o;
+            std::string part = node->mName.length > 0 ? node->mName.C_Str() : m_scene.meshes[m_meshBase + meshIndex].name;
+            if (node->mNumMeshes > 1) part += fmt::format("#{}", i);
+            if (m_placement.name.empty()) o.name = part;
+            else o.name = m_instances == 1 ? m_placement.name : m_placement.name + "/" + part;
+            o.mesh = m_meshBase + meshIndex;
+            o.material = m_placement.materialOverride >= 0 ? static_cast<uint32_t>(m_placement.materialOverride)
+                                                           : m_materialBase + am->mMaterialIndex;
+            o.transform = world;
+            m_scene.objects.push_back(std::move(o));
+        }
+        for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], world);
+    }
+
+    Expected<void> light(const aiLight* al) {
+        // assimp names a glTF light after the node that carries it.
+        const aiNode* node = m_ai->mRootNode->FindNode(al->mName);
+        const glm::mat4 m = m_placement.transform * (node ? globalTransform(node) : glm::mat4(1.0f));
+        Light l;
+        l.name = m_placement.name.empty() ? al->mName.C_Str() : m_placement.name + "/" + al->mName.C_Str();
+        // assimp 5.2 reports the glTF colour already multiplied by the intensity.
+        const glm::vec3 value = toGlm(al->mColorDiffuse) / kLumensPerWatt;
+        l.position = glm::vec3(m * glm::vec4(toGlm(al->mPosition), 1.0f));
+        const glm::vec3 localDirection = glm::length(toGlm(al->mDirection)) > 0.0f ? toGlm(al->mDirection)
+                                                                                    : glm::vec3(0, 0, -1);
+        l.direction = glm::normalize(glm::mat3(m) * localDirection);
+        switch (al->mType) {
+            case aiLightSource_POINT:
+                l.type = LightType::Point;
+                l.intensity = value;
+                break;
+            case aiLightSource_SPOT: {
+                l.type = LightType::Spot;
+                l.intensity = value;
+                // assimp passes glTF's half-angles through. glTF fades smoothly from the inner to the outer
+                // cone (t = (cos a - cos outer)/(cos inner - cos outer), intensity t^2); bounce's cos^n spot
+                // keeps the outer cone as cutoff and matches glTF's half-intensity angle, t = 1/sqrt(2).
+                const float outer = std::clamp(al->mAngleOuterCone, 1e-4f, glm::half_pi<float>());
+                const float inner = std::clamp(al->mAngleInnerCone, 0.0f, outer);
+                const float cosHalf = std::cos(outer) + (std::cos(inner) - std::cos(outer)) / std::sqrt(2.0f);
+                l.cutoffAngle = outer;
+                l.falloffExponent = cosHalf < 1.0f ? std::log(0.5f) / std::log(cosHalf) : 0.0f;
+                break;
+            }
+            case aiLightSource_DIRECTIONAL:
+                l.type = LightType::Directional;
+                l.irradiance = value;
+                break;
+            default:
+                spdlog::warn("{}: light '{}' of unsupported type {} skipped", where(), l.name, static_cast<int>(al->mType));
+                return {};
+        }
+        m_scene.lights.push_back(std::move(l));
+        ++m_result.lights;
+        return {};
+    }
+
+    Expected<void> camera(const aiCamera* ac) {
+        const aiNode* node = m_ai->mRootNode->FindNode(ac->mName);
+        const glm::mat4 m = m_placement.transform * (node ? globalTransform(node) : glm::mat4(1.0f));
+        Camera& c = m_scene.camera;
+        // assimp 5.2's glTF importer also copies the node's translation into mPosition, so the node
+        // transform alone places the camera (for glTF the camera sits at its node's origin).
+        const glm::vec3 local = node && m_format == Format::Gltf ? glm::vec3(0.0f) : toGlm(ac->mPosition);
+        c.position = glm::vec3(m * glm::vec4(local, 1.0f));
+        c.target = c.position + glm::normalize(glm::mat3(m) * toGlm(ac->mLookAt));
+        c.up = glm::normalize(glm::mat3(m) * toGlm(ac->mUp));
+        c.projection = Projection::Perspective;
+        // assimp 5.2 stores glTF's yfov * aspectRatio as mHorizontalFOV (or yfov when the aspect is absent).
+        c.verticalFov = ac->mAspect > 0.0f ? ac->mHorizontalFOV / ac->mAspect : ac->mHorizontalFOV;
+        if (ac->mClipPlaneNear > 0.0f) c.nearPlane = ac->mClipPlaneNear;
+        if (ac->mClipPlaneFar > c.nearPlane) c.farPlane = ac->mClipPlaneFar;
+        m_result.camera = true;
+        return {};
+    }
+
+    Scene& m_scene;
+    fs::path m_path;
+    const ModelPlacement& m_placement;
+    Format m_format;
+    const aiScene* m_ai = nullptr;
+    uint32_t m_meshBase = 0, m_materialBase = 0;
+    std::vector<bool> m_meshUsable;
+    size_t m_instances = 0;
+    std::map<std::string, int> m_textures;
+    ModelImportResult m_result;
+};
+
+}  // namespace
+
+Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, const ModelPlacement& placement) {
+    const std::string ext = lowerExtension(path);
+    Format format;
+    if (ext == ".gltf" || ext == ".glb") format = Format::Gltf;
+    else if (ext == ".obj") format = Format::Obj;
+    else if (ext == ".ply") format = Format::Ply;
+    else return makeError("{}: unsupported model extension '{}' (use .gltf .glb .obj .ply)", path.string(), ext);
+    const std::string where = placement.origin.empty() ? path.string() : placement.origin;
+    if (!fs::exists(path)) return makeError("{}: model file '{}' not found", where, path.string());
+
+    Assimp::Importer importer;
+    // FlipUVs: bounce's uv origin is the image's top-left corner (Image row 0), see docs/scene.md.
+    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices |
+                           aiProcess_FlipUVs | aiProcess_ValidateDataStructure;
+    const aiScene* ai = importer.ReadFile(path.string(), flags);
+    if (!ai || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !ai->mRootNode)
+        return makeError("{}: cannot read model '{}': {}", where, path.string(), importer.GetErrorString());
+    Importer run(scene, path, placement, format);
+    return run.run(ai);
+}
+
+Expected<Scene> loadModelScene(const fs::path& path) {
+    Scene scene;
+    scene.name = path.stem().string();
+    scene.source = path.string();
+    BOUNCE_TRY(const ModelImportResult result, appendModel(scene, path, ModelPlacement{}));
+    if (!result.camera) {
+        // Frame the model's bounding sphere from the front (+z), slightly above.
+        glm::vec3 lo, hi;
+        scene.bounds(0.0f, lo, hi);
+        const glm::vec3 centre = 0.5f * (lo + hi);
+        const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+        const float fov = scene.camera.verticalFov;
+        const float distance = radius / std::sin(0.5f * fov);
+        scene.camera.target = centre;
+        scene.camera.position = centre + distance * glm::normalize(glm::vec3(0.0f, 0.3f, 1.0f));
+        scene.camera.nearPlane = std::max(1e-3f, 0.01f * radius);  // metres
+        scene.camera.farPlane = distance + 4.0f * radius;
+    }
+    if (scene.lights.empty() && !scene.hasEmissiveMaterials()) {
+        Light sun;
+        sun.name = "default-sun";
+        sun.type = LightType::Directional;
+        sun.direction = kDefaultSunDirection;
+        sun.irradiance = kDefaultSunIrradiance;
+        scene.lights.push_back(sun);
+    }
+    return scene;
+}
+
+}  // namespace bounce
