@@ -44,6 +44,19 @@ bool isFlat(const SceneGeometry& g) {
     return true;
 }
 
+// Area lights are one-sided emitters that are not meshes (docs/scene.md "Lights"): seen from behind
+// they do not exist, for every kind of ray. Embree calls this for candidate hits on their rectangles.
+void passThroughBackOfAreaLight(const RTCFilterFunctionNArguments* args) {
+    const auto* normal = static_cast<const glm::vec3*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const float cosine = RTCRayN_dir_x(args->ray, args->N, i) * normal->x +
+                             RTCRayN_dir_y(args->ray, args->N, i) * normal->y +
+                             RTCRayN_dir_z(args->ray, args->N, i) * normal->z;
+        if (cosine >= 0.0f) args->valid[i] = 0;
+    }
+}
+
 Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, unsigned id) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geom) return makeError("embree: cannot create a triangle geometry");
@@ -57,6 +70,12 @@ Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, 
     }
     std::memcpy(vertices, g.positions.data(), g.positions.size() * sizeof(glm::vec3));
     std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(glm::uvec3));
+    if (g.kind == SceneGeometry::Kind::AreaLight) {
+        // The user pointer stays valid: faceNormals' buffer moves with the EmbreeScene.
+        rtcSetGeometryUserData(geom, const_cast<glm::vec3*>(g.faceNormals.data()));
+        rtcSetGeometryIntersectFilterFunction(geom, passThroughBackOfAreaLight);
+        rtcSetGeometryOccludedFilterFunction(geom, passThroughBackOfAreaLight);
+    }
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(scene, geom, id);
     rtcReleaseGeometry(geom);

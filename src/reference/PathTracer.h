@@ -8,7 +8,9 @@
 // combined by multiple importance sampling with the power heuristic; point, spot and directional
 // lights are delta lights, reached by light sampling only. Paths end by Russian roulette, at the
 // reflection limit of the chosen scope, on a miss (no environment light), or on an absorbing
-// surface (the back of a one-sided surface, an area light's rectangle).
+// surface: the back of a one-sided surface (seen by a reflected ray; the camera sees through it, as
+// the rasteriser culls it), or the emitting side of an area light, an opaque emitter that reflects
+// nothing. From behind, an area light is not there at all.
 #include "core/Error.h"
 #include "core/Image.h"
 #include "reference/CameraRays.h"
@@ -95,7 +97,7 @@ public:
         glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
         bool emissive = false;
         bool twoSided = false;
-        bool absorber = false;    // area-light rectangles: emit, never reflect
+        bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only)
         bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
     };
 

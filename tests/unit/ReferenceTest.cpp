@@ -367,6 +367,43 @@ TEST(ReferenceVisibility, CameraSeesThroughBackFacesButTheyShadow) {
     EXPECT_NEAR(seen.radiance.at(8, 8).r / (0.25 * kIrradiance / glm::pi<double>()), 1.0, 1e-5);
 }
 
+// An area light is a one-sided emitter, not a mesh: from its emitting side it is an opaque surface
+// of radiance L (it hides what is behind it and casts shadows), from behind it is not there. A 0.8 m
+// square at 1 m, under a directional light travelling along (1, -1, 0): its shadow, if it casts one,
+// is centred 1 m to the side, at x = 1 (pixels 11-12, rows 7-8 of the 16 x 16 view). The panel is
+// dim (1e-3 W/(m^2 sr)) so that it is almost never chosen for light sampling (choice by flux) and
+// the sunlit pixels are exact; its own light on the plane stays below 1e-3 of the sunlight.
+TEST(ReferenceVisibility, AreaLightIsOneSidedAndNotAMesh) {
+    constexpr float kRho = 0.5f, kIrradiance = 2.0f, kView = 4.0f, kRadiance = 1e-3f;
+    constexpr int kSize = 16;
+    Scene scene = testscenes::planeUnderOrthoCamera(kRho, kView);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
+    sun.irradiance = glm::vec3(kIrradiance);
+    scene.lights.push_back(sun);
+    Light panel;
+    panel.type = LightType::Area;
+    panel.position = {0.0f, 1.0f, 0.0f};
+    panel.edgeU = {0.0f, 0.0f, 0.8f};  // cross(+z, +x) = +y: emits upwards, towards the camera
+    panel.edgeV = {0.8f, 0.0f, 0.0f};
+    panel.radiance = glm::vec3(kRadiance);
+    scene.lights.push_back(panel);
+    const double sunlit = kRho * kIrradiance * (1.0 / std::sqrt(2.0)) / glm::pi<double>();
+
+    const PathTracerResult up = render(scene, directOnly(kSize, 16));
+    EXPECT_NEAR(up.radiance.at(8, 8).r, kRadiance, 1e-5f) << "the camera sees the emitting side";
+    EXPECT_NEAR(up.radiance.at(11, 7).r / sunlit, 1.0, 1e-5) << "no shadow from behind";
+    EXPECT_NEAR(up.radiance.at(12, 8).r / sunlit, 1.0, 1e-5);
+
+    std::swap(scene.lights[1].edgeU, scene.lights[1].edgeV);  // now emitting downwards
+    const PathTracerResult down = render(scene, directOnly(kSize, 16));
+    EXPECT_LT(down.radiance.at(11, 7).r, 1e-3 * sunlit) << "the emitting side casts a shadow";
+    EXPECT_LT(down.radiance.at(12, 8).r, 1e-3 * sunlit);
+    // Seen from behind it is not there: the camera sees the sunlit plane under it.
+    EXPECT_NEAR(down.radiance.at(8, 8).r / sunlit, 1.0, 1e-3);
+}
+
 // The base-colour texture convention: uv (0, 0) is the first row of the stored image (its top),
 // bilinear between texel centres. A 1 x 2 texture (row 0 dark, row 1 bright) on a 4 m quad whose v
 // runs along world x, lit so that L = texel value: bilinear between the row centres at v = 1/4 and
