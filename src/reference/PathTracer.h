@@ -104,13 +104,43 @@ public:
 private:
     struct Counters;
     struct PixelSums;
+    // One camera path in flight.
+    struct PathState {
+        Rng rng;
+        glm::vec3 radiance{0.0f};
+        glm::vec3 throughput{1.0f};
+        glm::vec3 origin{0.0f};     // of the ray to trace next
+        glm::vec3 direction{0.0f};  // unit
+        float tMax = 0.0f;
+        int reflections = 0;   // scattering events so far
+        float bsdfPdf = 0.0f;  // solid-angle pdf of the BRDF sample that chose `direction`
+        int culledCrossings = 0;
+    };
+    struct HitRecord {
+        uint32_t geomId;  // RTC_INVALID_GEOMETRY_ID for a miss
+        uint32_t primId;
+        float u, v, t;
+    };
+    // The next-event estimation ray of one reflection and what it adds if it is not blocked.
+    struct ShadowRay {
+        bool active = false;
+        glm::vec3 origin, direction;  // tMax in units of direction's length
+        float tMax;
+        glm::vec3 contribution;
+    };
+    enum class Step { Continue, Retrace, Stop };
+
     PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree);
     void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
                     Counters& counters) const;
-    // Continues a camera path whose first intersection (geomId, or RTC_INVALID_GEOMETRY_ID for a
-    // miss) the packet tracer already found.
-    glm::vec3 tracePath(Rng& rng, const CameraRay& ray, const RTCHit& firstHit, float firstT,
-                        Counters& counters) const;
+    // Handles a hit of the path's current ray: emission, the reflection's shadow ray (left in
+    // `shadow` for the caller to trace), and the next direction. Retrace: the camera ray crossed a
+    // culled back face and must be traced again from there.
+    Step scatter(PathState& path, const HitRecord& hit, ShadowRay& shadow) const;
+    HitRecord intersect(const PathState& path, Counters& counters) const;
+    bool visible(const ShadowRay& shadow, Counters& counters) const;
+    // Follows a path one ray at a time until it ends.
+    void finishPath(PathState& path, HitRecord hit, Counters& counters) const;
 
     const Scene* m_scene;
     PathTracerSettings m_settings;
