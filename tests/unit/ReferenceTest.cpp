@@ -214,6 +214,40 @@ TEST(ReferenceDirect, SpotLightOverDiffusePlane) {
     EXPECT_GT(outside, 100);
 }
 
+// --frame F renders the scene at time F / frameRate: a point light whose track moves it 0.5 m along
+// x in 1 s is rendered at frame 30 (30 fps) where the track puts it, pixel by pixel as above.
+TEST(ReferenceDirect, RendersTheSceneAtTheFramesTime) {
+    constexpr float kRho = 0.5f, kView = 2.0f, kIntensity = 2.0f;
+    constexpr int kSize = 16;
+    constexpr uint32_t kSpp = 256;
+    Scene scene = testscenes::planeUnderOrthoCamera(kRho, kView);
+    scene.frameRate = 30.0f;
+    Light light;
+    light.type = LightType::Point;
+    light.position = glm::vec3(-0.2f, 1.0f, 0.1f);
+    light.intensity = glm::vec3(kIntensity);
+    TransformKey k0, k1;
+    k0.time = 0.0f;
+    k1.time = 1.0f;
+    k1.translation = glm::vec3(0.5f, 0.0f, 0.0f);
+    light.animation.keys = {k0, k1};
+    light.animation.loop = false;
+    scene.lights.push_back(light);
+    PathTracerSettings s = directOnly(kSize, kSpp);
+    s.frame = 30;
+    const PathTracerResult r = render(scene, s);
+    const glm::vec3 moved = light.position + glm::vec3(0.5f, 0.0f, 0.0f);
+    const auto radiance = [&](double x, double z) {
+        const double dx = x - moved.x, dy = moved.y, dz = z - moved.z;
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        return kRho / glm::pi<double>() * kIntensity * (dy / std::sqrt(r2)) / r2;
+    };
+    for (int py = 0; py < kSize; ++py)
+        for (int px = 0; px < kSize; ++px)
+            expectPixelMatches(r.radiance.at(px, py).g, footprint(px, py, kSize, kView, radiance), kSpp, "frame 30",
+                               px, py);
+}
+
 // Directional light: E = E_perp cos(theta) everywhere, no variation, so no noise either: the only
 // error is float rounding (1e-5 relative).
 TEST(ReferenceDirect, DirectionalLightOverDiffusePlane) {
