@@ -189,8 +189,7 @@ Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSett
 }
 
 PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree)
-    : m_scene(&scene),
-      m_settings(settings),
+    : m_settings(settings),
       m_time(scene.timeOfFrame(settings.frame)),
       m_embree(std::move(embree)),
       m_lights(scene, m_embree),

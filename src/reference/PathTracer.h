@@ -21,7 +21,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <vector>
 
 namespace bounce {
@@ -81,7 +80,8 @@ struct PathTracerResult {
 class PathTracer {
 public:
     // Checks the settings and the scene (a light source must exist, textures must be finite) and
-    // builds the BVH and the light list at the frame's time. `scene` must outlive the tracer.
+    // builds the BVH and the light list at the frame's time. `scene` must outlive the tracer (its
+    // materials and textures are read while rendering).
     static Expected<PathTracer> create(const Scene& scene, const PathTracerSettings& settings);
 
     PathTracerResult render(const ProgressCallback& progress = {}) const;
@@ -142,7 +142,6 @@ private:
     // Follows a path one ray at a time until it ends.
     void finishPath(PathState& path, HitRecord hit, Counters& counters) const;
 
-    const Scene* m_scene;
     PathTracerSettings m_settings;
     float m_time;
     EmbreeScene m_embree;
