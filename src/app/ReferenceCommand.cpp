@@ -154,6 +154,9 @@ int runReference(const ReferenceArgs& args) {
     job.stats = args.stats;
     job.toneMap = ToneMap{args.exposureEv, *curve};
 
+    if (args.indirectOnly && *bounces == 0)
+        spdlog::warn("reference: --indirect-only with --bounces 0 keeps nothing: the image is black by definition");
+
     auto scene = loadScene(args.scene, job.sceneParams);
     if (!scene) return fail(scene.error().message);
 

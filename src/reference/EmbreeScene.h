@@ -4,7 +4,8 @@
 // ray-casting service; not meant for use outside src/reference.
 //
 // Embree geometry ids are indices into geometries(): first one geometry per selected object, then
-// (when asked) one two-triangle geometry per rectangular area light.
+// (when asked) one two-triangle geometry per rectangular area light. An area light's rectangle is
+// only there for rays arriving on its emitting side: from behind, rays pass through it.
 #include "core/Error.h"
 #include "scene/Scene.h"
 

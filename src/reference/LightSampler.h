@@ -120,7 +120,8 @@ inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2,
             const float d2 = glm::dot(toLight, toLight);
             if (!(d2 > 0.0f)) return false;
             const float d = std::sqrt(d2);
-            out.wi = toLight * (1.0f / d);
+            const float invD = 1.0f / d;
+            out.wi = toLight * invD;
             float cosLight = -glm::dot(out.wi, e.normal);
             const bool front = cosLight > 0.0f;
             if (!front) {
@@ -130,8 +131,9 @@ inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2,
             if (!(cosLight > 0.0f)) return false;
             out.distance = d;
             out.lightPoint = offsetRayOrigin(y, front ? e.normal : -e.normal);
+            // pdf = pmf d^2 / (A cos); the contribution Le / pdf reuses 1/d instead of dividing again.
             out.pdf = pmf * d2 / (e.area * cosLight);
-            out.contribution = e.emitted * (1.0f / out.pdf);
+            out.contribution = e.emitted * (e.area * cosLight * invD * invD / pmf);
             return true;
         }
     }

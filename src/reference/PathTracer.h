@@ -8,7 +8,9 @@
 // combined by multiple importance sampling with the power heuristic; point, spot and directional
 // lights are delta lights, reached by light sampling only. Paths end by Russian roulette, at the
 // reflection limit of the chosen scope, on a miss (no environment light), or on an absorbing
-// surface (the back of a one-sided surface, an area light's rectangle).
+// surface: the back of a one-sided surface (seen by a reflected ray; the camera sees through it, as
+// the rasteriser culls it), or the emitting side of an area light, an opaque emitter that reflects
+// nothing. From behind, an area light is not there at all.
 #include "core/Error.h"
 #include "core/Image.h"
 #include "reference/CameraRays.h"
@@ -19,7 +21,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <vector>
 
 namespace bounce {
@@ -79,7 +80,8 @@ struct PathTracerResult {
 class PathTracer {
 public:
     // Checks the settings and the scene (a light source must exist, textures must be finite) and
-    // builds the BVH and the light list at the frame's time. `scene` must outlive the tracer.
+    // builds the BVH and the light list at the frame's time. `scene` must outlive the tracer (its
+    // materials and textures are read while rendering).
     static Expected<PathTracer> create(const Scene& scene, const PathTracerSettings& settings);
 
     PathTracerResult render(const ProgressCallback& progress = {}) const;
@@ -95,22 +97,51 @@ public:
         glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
         bool emissive = false;
         bool twoSided = false;
-        bool absorber = false;    // area-light rectangles: emit, never reflect
+        bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only)
         bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
     };
 
 private:
     struct Counters;
     struct PixelSums;
+    // One camera path in flight.
+    struct PathState {
+        Rng rng;
+        glm::vec3 radiance{0.0f};
+        glm::vec3 throughput{1.0f};
+        glm::vec3 origin{0.0f};     // of the ray to trace next
+        glm::vec3 direction{0.0f};  // unit
+        float tMax = 0.0f;
+        int reflections = 0;   // scattering events so far
+        float bsdfPdf = 0.0f;  // solid-angle pdf of the BRDF sample that chose `direction`
+        int culledCrossings = 0;
+    };
+    struct HitRecord {
+        uint32_t geomId;  // RTC_INVALID_GEOMETRY_ID for a miss
+        uint32_t primId;
+        float u, v, t;
+    };
+    // The next-event estimation ray of one reflection and what it adds if it is not blocked.
+    struct ShadowRay {
+        bool active = false;
+        glm::vec3 origin, direction;  // tMax in units of direction's length
+        float tMax;
+        glm::vec3 contribution;
+    };
+    enum class Step { Continue, Retrace, Stop };
+
     PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree);
     void renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
                     Counters& counters) const;
-    // Continues a camera path whose first intersection (geomId, or RTC_INVALID_GEOMETRY_ID for a
-    // miss) the packet tracer already found.
-    glm::vec3 tracePath(Rng& rng, const CameraRay& ray, const RTCHit& firstHit, float firstT,
-                        Counters& counters) const;
+    // Handles a hit of the path's current ray: emission, the reflection's shadow ray (left in
+    // `shadow` for the caller to trace), and the next direction. Retrace: the camera ray crossed a
+    // culled back face and must be traced again from there.
+    Step scatter(PathState& path, const HitRecord& hit, ShadowRay& shadow) const;
+    HitRecord intersect(const PathState& path, Counters& counters) const;
+    bool visible(const ShadowRay& shadow, Counters& counters) const;
+    // Follows a path one ray at a time until it ends.
+    void finishPath(PathState& path, HitRecord hit, Counters& counters) const;
 
-    const Scene* m_scene;
     PathTracerSettings m_settings;
     float m_time;
     EmbreeScene m_embree;

@@ -1,10 +1,13 @@
 #pragma once
-// Counter-based random numbers for the reference path tracer. A stream is keyed by
-// (seed, pixel, sample) and the n-th value is a pure function of (key, n), so an image depends only
-// on the seed and never on which thread rendered which pixel, or in which order.
+// Random numbers for the reference path tracer. Each camera path has its own stream, keyed by
+// (seed, pixel, sample): the key is hashed into the starting state of a PCG32 generator (O'Neill,
+// "PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms for Random Number
+// Generation", 2014, XSH-RR output), so an image depends only on the seed and never on which thread
+// rendered which pixel, or in which order.
 //
-// The mixing function is the SplitMix64 finaliser (Steele, Lea and Flood, "Fast splittable
-// pseudorandom number generators", OOPSLA 2014), whose output sequence passes BigCrush.
+// The hash is the SplitMix64 finaliser (Steele, Lea and Flood, "Fast splittable pseudorandom number
+// generators", OOPSLA 2014). Streams start at independent-looking points of PCG's 2^64 cycle; a path
+// uses a few hundred numbers at most, so overlapping streams are vanishingly unlikely.
 #include <cstdint>
 
 namespace bounce {
@@ -13,21 +16,18 @@ class Rng {
 public:
     Rng() noexcept = default;  // a placeholder, to be assigned before use
     Rng(uint64_t seed, uint64_t pixel, uint64_t sample) noexcept
-        : m_key(mix((mix(mix(seed + kGolden) ^ pixel) + kGolden) ^ sample)) {}
+        : m_state(mix((mix(mix(seed + kGolden) ^ pixel) + kGolden) ^ sample)) {}
 
-    // The next 32 uniformly distributed bits.
+    // The next 32 uniformly distributed bits (PCG32 XSH-RR).
     uint32_t nextBits() noexcept {
-        if (m_hasSpare) {
-            m_hasSpare = false;
-            return m_spare;
-        }
-        const uint64_t bits = mix(m_key + (++m_counter) * kGolden);
-        m_spare = static_cast<uint32_t>(bits >> 32);
-        m_hasSpare = true;
-        return static_cast<uint32_t>(bits);
+        const uint64_t old = m_state;
+        m_state = old * kMultiplier + kIncrement;
+        const auto xorShifted = static_cast<uint32_t>(((old >> 18) ^ old) >> 27);
+        const auto rotation = static_cast<uint32_t>(old >> 59);
+        return (xorShifted >> rotation) | (xorShifted << ((32u - rotation) & 31u));
     }
 
-    // Uniform in [0, 1): the top 24 bits scaled by 2^-24, so 1 is never returned.
+    // Uniform in [0, 1): 24 random bits scaled by 2^-24, so 1 is never returned.
     float next() noexcept { return static_cast<float>(nextBits() >> 8) * 0x1.0p-24f; }
 
     static uint64_t mix(uint64_t z) noexcept {
@@ -37,11 +37,10 @@ public:
     }
 
 private:
-    static constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ull;  // 2^64 / golden ratio (SplitMix64 increment)
-    uint64_t m_key = 0;
-    uint64_t m_counter = 0;
-    uint32_t m_spare = 0;
-    bool m_hasSpare = false;
+    static constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ull;      // 2^64 / golden ratio (SplitMix64)
+    static constexpr uint64_t kMultiplier = 6364136223846793005ull;  // PCG's 64-bit LCG multiplier (Knuth)
+    static constexpr uint64_t kIncrement = 1442695040888963407ull;   // PCG's default odd increment
+    uint64_t m_state = 0;
 };
 
 }  // namespace bounce

@@ -57,6 +57,52 @@ inline Scene furnaceRoom(float rho, float emitted, bool twoSided = false) {
     return scene;
 }
 
+// Sphere furnace (analytic-tests.md): a closed sphere of radius 1 m and albedo rho, tessellated
+// into 2 * slices * (stacks - 1) triangles facing inwards, with a point light of intensity I at its
+// centre and the camera there too, looking down -z with a 90 degree field of view.
+inline Scene sphereFurnace(float rho, float intensity, int slices, int stacks) {
+    Scene scene;
+    scene.name = "test-sphere-furnace";
+    scene.source = "test";
+    Mesh m;
+    m.name = "sphere";
+    for (int j = 0; j <= stacks; ++j) {
+        const float theta = 3.14159265f * static_cast<float>(j) / static_cast<float>(stacks);
+        for (int i = 0; i <= slices; ++i) {
+            const float phi = 6.28318531f * static_cast<float>(i) / static_cast<float>(slices);
+            const glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            m.positions.push_back(p);
+            m.normals.push_back(-p);  // inwards
+        }
+    }
+    const auto index = [&](int i, int j) { return static_cast<uint32_t>(j * (slices + 1) + i); };
+    for (int j = 0; j < stacks; ++j)
+        for (int i = 0; i < slices; ++i) {
+            // Counter-clockwise seen from the centre (the front side faces inwards). The pole rows
+            // produce one degenerate triangle per quad, which Embree never hits and NEE never samples.
+            const uint32_t a = index(i, j), b = index(i + 1, j), c = index(i + 1, j + 1), d = index(i, j + 1);
+            if (j != 0) m.indices.insert(m.indices.end(), {a, c, b});
+            if (j != stacks - 1) m.indices.insert(m.indices.end(), {a, d, c});
+        }
+    scene.meshes.push_back(m);
+    Material mat;
+    mat.name = "grey";
+    mat.baseColor = glm::vec3(rho);
+    scene.materials.push_back(mat);
+    Object o;
+    o.name = "sphere";
+    scene.objects.push_back(o);
+    Light light;
+    light.name = "centre";
+    light.type = LightType::Point;
+    light.intensity = glm::vec3(intensity);
+    scene.lights.push_back(light);
+    scene.camera.position = glm::vec3(0.0f);
+    scene.camera.target = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.camera.verticalFov = 1.5707964f;
+    return scene;
+}
+
 // A large horizontal plane y = 0 (facing +y) of albedo rho, seen from straight above by an
 // orthographic camera whose view is `viewSize` metres wide and centred on the origin. Image column
 // x maps to world x, image row y to world z (row 0 at z = -viewSize/2).
