@@ -1,8 +1,9 @@
 // G-buffer (deferred shading input). Inputs: render/scene.vert outputs, materials.
 // Outputs (all linear): 0 position (xyz world, w = 1 where covered), 1 normal (xyz world shading
-// normal facing the viewer for two-sided materials, w = roughness), 2 albedo (rgb; 0 on back faces
-// of one-sided materials, which occlude but reflect nothing; w = metallic), 3 emission (rgb
-// radiance W/(m^2 sr), front faces only; w = specularF0).
+// normal facing the viewer for two-sided materials, w = roughness), 2 albedo (rgb; w = metallic),
+// 3 emission (rgb radiance W/(m^2 sr); w = specularF0). The camera sees through the back of a
+// one-sided surface (it is culled, as the reference's camera rays pass through it); shadow maps
+// keep back faces, so they still occlude light, as the reference's shadow rays find them.
 #include "common/scene.glsl"
 
 in vec3 v_posWorld;
@@ -24,12 +25,8 @@ void main() {
     vec3 albedo = materialAlbedo(material, v_uv);
     vec3 emission = m.emission.rgb;
     if (back) {
-        if (twoSided) {
-            n = -n;
-        } else {
-            albedo = vec3(0.0);
-            emission = vec3(0.0);
-        }
+        if (!twoSided) discard;
+        n = -n;
     }
     o_position = vec4(v_posWorld, 1.0);
     o_normal = vec4(n, m.params.x);

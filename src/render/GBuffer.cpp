@@ -39,7 +39,7 @@ void GBuffer::render(SceneDrawer& drawer, const View& view, const LightSet& ligh
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_BLEND);
-    // No culling: back faces of one-sided materials occlude (and are black), as in the reference.
+    // Culling of one-sided back faces happens per material in gbuffer.frag (discard).
     glDisable(GL_CULL_FACE);
     m_program.use();
     drawer.draw(view);
