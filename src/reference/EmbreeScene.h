@@ -11,6 +11,7 @@
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -30,6 +31,23 @@ struct EmbreeSceneOptions {
 };
 
 inline constexpr uint32_t kNoIndex = 0xffffffffu;
+
+// Fills a single Embree ray (all geometry visible, no motion blur). Shared by the path tracer and
+// the ray caster so both set rays up the same way.
+inline void setRay(RTCRay& r, glm::vec3 origin, glm::vec3 direction, float tMin, float tMax) noexcept {
+    r.org_x = origin.x;
+    r.org_y = origin.y;
+    r.org_z = origin.z;
+    r.tnear = tMin;
+    r.dir_x = direction.x;
+    r.dir_y = direction.y;
+    r.dir_z = direction.z;
+    r.time = 0.0f;
+    r.tfar = tMax;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+}
 
 struct SceneGeometry {
     enum class Kind : uint8_t { Object, AreaLight };

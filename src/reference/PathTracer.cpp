@@ -62,18 +62,7 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 RTCRayHit makeRayHit(glm::vec3 origin, glm::vec3 direction, float tMax) {
     RTCRayHit rh;
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = tMax;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
+    setRay(rh.ray, origin, direction, 0.0f, tMax);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -98,18 +87,7 @@ void setPacketRay(Packet& ray, int lane, glm::vec3 origin, glm::vec3 direction, 
 
 RTCRay makeShadowRay(glm::vec3 origin, glm::vec3 direction, float tMax) {
     RTCRay r;
-    r.org_x = origin.x;
-    r.org_y = origin.y;
-    r.org_z = origin.z;
-    r.tnear = 0.0f;
-    r.dir_x = direction.x;
-    r.dir_y = direction.y;
-    r.dir_z = direction.z;
-    r.time = 0.0f;
-    r.tfar = tMax;
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
+    setRay(r, origin, direction, 0.0f, tMax);
     return r;
 }
 

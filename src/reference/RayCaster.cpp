@@ -17,21 +17,6 @@ constexpr size_t kStreamChunk = 64;
 constexpr size_t kParallelThreshold = 4096;
 constexpr size_t kParallelGrain = 1024;
 
-void setRay(RTCRay& r, glm::vec3 origin, glm::vec3 direction, float tMin, float tMax) {
-    r.org_x = origin.x;
-    r.org_y = origin.y;
-    r.org_z = origin.z;
-    r.tnear = tMin;
-    r.dir_x = direction.x;
-    r.dir_y = direction.y;
-    r.dir_z = direction.z;
-    r.time = 0.0f;
-    r.tfar = tMax;
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
-}
-
 }  // namespace
 
 Expected<RayCaster> RayCaster::create(const Scene& scene, float time, GeometryFilter filter) {
