@@ -1,6 +1,7 @@
-// `multires-splat` (Nichols 2010 Ch. 3, mode B): the transform-feedback refinement produces exactly the
+// `multires-splat` (Nichols 2010 Ch. 3): mode B's transform-feedback refinement produces exactly the
 // cells the isr stencil set-up marks (one per covered pixel's level), the image is close to the
-// every-texel gather, and every built-in scene renders.
+// every-texel gather, and every built-in scene renders. Mode A (refinement=per-vpl) equals mode B on a
+// Lambertian scene and refines more, with no larger error and no more energy, on a glossy floor.
 #include "GpuTestSupport.h"
 #include "NicholsTestSupport.h"
 
@@ -64,10 +65,91 @@ TEST_F(MultiresSplatGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);
         ASSERT_TRUE(scene.ok()) << info.name;
-        const Image indirect = renderIndirect(*scene, "multires-splat", {{"rsmSize", "32"}, {"vplGrid", "8"}}, 32);
-        EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") {
-            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+        for (const char* mode : {"shared", "per-vpl"}) {
+            const Image indirect = renderIndirect(
+                *scene, "multires-splat", {{"rsmSize", "32"}, {"vplGrid", "8"}, {"refinement", mode}}, 32);
+            EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name << " " << mode;
+            if (info.name == "furnace") {
+                EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
+            }
         }
     }
+}
+
+namespace {
+// The Cornell box with its floor given its own glossy GGX material (the rest stays Lambertian).
+Scene glossyFloorCornellBox() {
+    auto scene = loadScene("cornell-box");
+    EXPECT_TRUE(scene.ok());
+    Scene s = std::move(*scene);
+    Material glossy = s.materials.at(s.objects.front().material);
+    glossy.name = "glossy-floor";
+    glossy.specularF0 = 0.5f;  // a strong dielectric-like lobe so highlights exist at 32^2
+    glossy.roughness = 0.3f;   // GGX alpha 0.09: a narrow lobe
+    s.materials.push_back(glossy);
+    bool found = false;
+    for (Object& o : s.objects)
+        if (o.name == "floor") {
+            o.material = static_cast<uint32_t>(s.materials.size() - 1);
+            found = true;
+        }
+    EXPECT_TRUE(found);
+    return s;
+}
+
+const std::map<std::string, std::string> kModeSettings = {{"rsmSize", "32"}, {"vplGrid", "8"}, {"eyeCoarsest", "8"}};
+
+std::map<std::string, std::string> withRefinement(const std::string& mode) {
+    auto s = kModeSettings;
+    s["refinement"] = mode;
+    return s;
+}
+}  // namespace
+
+TEST_F(MultiresSplatGpuTest, PerVplRefinementEqualsSharedOnALambertianScene) {
+    auto scene = loadScene("cornell-box");  // every material has specularF0 = 0, metallic = 0
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 32;
+    auto shared = makePipeline(*scene, "multires-splat", withRefinement("shared"), kSize);
+    auto perVpl = makePipeline(*scene, "multires-splat", withRefinement("per-vpl"), kSize);
+    const FrameStats b = shared->renderFrame(0), a = perVpl->renderFrame(0);
+    // No glossy lobe: every VPL's list is the shared list.
+    EXPECT_EQ(a.counters.at("splats"), b.counters.at("splats"));
+    EXPECT_EQ(a.counters.at("subsplats"), b.counters.at("subsplats") * b.counters.at("vpls"));
+    const Image ia = perVpl->readback(Component::Indirect), ib = shared->readback(Component::Indirect);
+    // Same sums in another blending order: float rounding only.
+    EXPECT_LT(relativeRmsError(ia, ib), 1e-5);
+}
+
+TEST_F(MultiresSplatGpuTest, PerVplRefinementRefinesNearGlossyHighlights) {
+    const Scene scene = glossyFloorCornellBox();
+    // 64^2: at 32^2 the floor is refined to single pixels by its depth slope alone.
+    constexpr int kSize = 64;
+    // The every-texel gather of the same VPLs and Eq. 3.2: one level, every pixel its own subsplat.
+    auto every = kModeSettings;
+    every["eyeCoarsest"] = std::to_string(kSize);
+    const Image limit = renderIndirect(scene, "multires-splat", every, kSize);
+    // A coarse geometric criterion (relative depth slope 0.5 per pixel) leaves the floor coarse in mode B.
+    auto shared = withRefinement("shared"), perVplSettings = withRefinement("per-vpl");
+    shared["depthThreshold"] = perVplSettings["depthThreshold"] = "0.5";
+    auto sharedPipeline = makePipeline(scene, "multires-splat", shared, kSize);
+    auto perVpl = makePipeline(scene, "multires-splat", perVplSettings, kSize);
+    const FrameStats b = sharedPipeline->renderFrame(0), a = perVpl->renderFrame(0);
+    const Image ia = perVpl->readback(Component::Indirect), ib = sharedPipeline->readback(Component::Indirect);
+    RecordProperty("sharedSplats", std::to_string(b.counters.at("splats")));
+    RecordProperty("perVplSplats", std::to_string(a.counters.at("splats")));
+    EXPECT_GT(a.counters.at("splats"), b.counters.at("splats"));
+    const double errorA = relativeRmsError(ia, limit), errorB = relativeRmsError(ib, limit);
+    RecordProperty("sharedRelRms", std::to_string(errorB));
+    RecordProperty("perVplRelRms", std::to_string(errorA));
+    // Mode A only adds refinement, i.e. samples closer to the same VPLs' every-texel gather; 1e-6
+    // absolute for float rounding.
+    EXPECT_LE(errorA, errorB + 1e-6);
+    EXPECT_TRUE(finiteAndNonNegative(ia));
+    RecordProperty("sharedTotal", std::to_string(totalRadiance(ib)));
+    RecordProperty("perVplTotal", std::to_string(totalRadiance(ia)));
+    RecordProperty("limitTotal", std::to_string(totalRadiance(limit)));
+    // Energy does not grow: splitting a subsplat replaces one clustered sample by its children's, and
+    // the coarse samples here overestimate the every-texel total; 1e-5 relative for float sums.
+    EXPECT_LE(totalRadiance(ia), totalRadiance(ib) * (1.0 + 1e-5));
 }

@@ -1,5 +1,6 @@
 // `multires-splat` — multiresolution splatting for indirect illumination (Nichols 2010, Ch. 3;
-// Nichols & Wyman, I3D 2009), refinement mode B.
+// Nichols & Wyman, I3D 2009), refinement modes B (refinement=shared, the thesis's default) and A
+// (refinement=per-vpl, §3.2.3.1).
 //
 // Passes (timers): "rsm" (light 0's RSM), "vpl-cache" (regular vplGrid^2 VPLs), "min-max-mipmap" (eye
 // pyramid: depth-derivative max-mipmap and per-component normal min-max down to 16^2, refine flags with
@@ -8,11 +9,21 @@
 // captured by transform feedback into ping-pong buffers), "splat" (the shared list drawn as GL_POINTS
 // once per VPL into the flattened multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp),
 // "upsample" (coarse-to-fine, §3.2.5, then x albedo/pi).
-// Counters: vpls, subsplats (per VPL: the list is shared), fillFraction = subsplats / pixels (R2).
+// Mode A: every subsplat carries its VPL index (w), the initial list holds the coarsest cells once per
+// VPL, and the refine pass also splits a subsplat when the GGX glossy radiance toward its VPL, evaluated
+// at the four children, differs by more than lobeThreshold in r, g or b (the thesis's SamplesDiffer,
+// here OR-ed with the geometric flags so a Lambertian scene gives mode B's lists); each subsplat is then
+// splatted with its own VPL only. VPLs are processed in batches whose worst-case lists fit 64 MiB.
+// Counters: vpls, subsplats (B: entries of the shared list; A: sum over the per-VPL lists), splats
+// (subsplat-VPL pairs drawn), fillFraction = splats / (VPLs x pixels) (R2).
 //
 // Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5).
-// Not implemented (see docs/techniques/multires-splat.md): mode A (per-VPL BRDF-driven refinement for
-// Phong surfaces), the point/quad switch, the curvature mipmap.
+// Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the curvature mipmap,
+// glossy shading of the splatted light (both modes splat irradiance and shade it Lambertian, like the
+// rsm gather; mode A uses the lobe only to decide refinement).
+// Deviation (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
+// alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007), and the glossy
+// material is read from the G-buffer at each child's central pixel.
 // Deviations: the geometry shader runs four instances per subsplat, each emitting at most one point
 // (the thesis's shader emits up to four): on llvmpipe, multi-vertex geometry-shader output captured by
 // transform feedback lost primitives (measured: 2251 in, 2155 out of a pass-through pass); a flattened atlas instead of one render target per level (same texels); the refinement
@@ -25,6 +36,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace bounce {
@@ -32,6 +44,9 @@ namespace bounce {
 namespace {
 constexpr GLuint kSubsplatAttribute = 0;  // refine.vert / splat.vert a_subsplat
 constexpr int kMaxLevels = 16;            // splat.vert u_origins[16]
+// Mode A list memory per batch (two ping-pong buffers of this size); bounce's choice, not the thesis's
+// (its Table 3.1 marks configurations "N/A" that exceeded the GTX 280's memory).
+constexpr size_t kListBudgetBytes = size_t{64} << 20;
 }  // namespace
 
 void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
@@ -43,6 +58,13 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("detailAlpha", m_detailAlpha, "Eq. 3.3's alpha (thesis 0.5, Fig. 3.9)", 0.0f, 1.0f);
     v.field("depthThreshold", m_thresholds.depth, "max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_thresholds.normal, "normal component range, 0..2 (assumption)", 0.0f, 2.0f);
+    v.field("refinement", m_refinement,
+            "shared: mode B, one geometric list for all VPLs (thesis default, §3.2.3); per-vpl: mode A, one list per "
+            "VPL also split where the glossy light toward it varies (§3.2.3.1)",
+            kRefinements);
+    v.field("lobeThreshold", m_lobeThreshold,
+            "mode A SamplesDiffer threshold T on glossy radiance, W/(m^2 sr) (assumption: the thesis gives none)", 0.0f,
+            1e9f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
 }
 
@@ -86,8 +108,16 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     }
     const int levels = m_eye->levels();
     BOUNCE_CHECK(levels <= kMaxLevels, "multires-splat supports up to {} levels", kMaxLevels);
+    const bool perVpl = m_refinement == "per-vpl";
     const glm::ivec2 base = m_eye->levelSize(0);
-    const size_t capacity = static_cast<size_t>(base.x) * base.y * sizeof(glm::ivec4);
+    const size_t perList = static_cast<size_t>(base.x) * base.y;  // a list never exceeds one subsplat per pixel
+    const int vplCount = m_vpls->count();
+    // Mode A holds one list per VPL side by side; VPLs are refined and splatted in batches whose
+    // worst-case lists fit kListBudgetBytes.
+    const int batch = perVpl ? static_cast<int>(std::clamp<size_t>(kListBudgetBytes / (perList * sizeof(glm::ivec4)), 1,
+                                                                   static_cast<size_t>(std::max(vplCount, 1))))
+                             : 1;
+    const size_t capacity = perList * static_cast<size_t>(batch) * sizeof(glm::ivec4);
     if (capacity != m_capacity) {
         m_capacity = capacity;
         for (int i = 0; i < 2; ++i) {
@@ -99,74 +129,95 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             glVertexArrayAttribBinding(m_vaos[i].id(), kSubsplatAttribute, 0);
         }
     }
-    int current = 0;
-    GLuint count = 0;
-    {
-        auto s = ctx.timers.scope("refine");
-        const glm::ivec2 top = m_eye->levelSize(levels - 1);
-        std::vector<glm::ivec4> initial;
-        for (int y = 0; y < top.y; ++y)
-            for (int x = 0; x < top.x; ++x) initial.emplace_back(levels - 1, x, y, 0);
-        m_lists[0].upload(0, initial.size() * sizeof(glm::ivec4), initial.data());
-        count = static_cast<GLuint>(initial.size());
-        m_eye->geometry().bind(BINDING_TEX_TECH0);
-        m_eye->refine().bind(BINDING_TEX_TECH1);
-        m_refine.use();
-        glEnable(GL_RASTERIZER_DISCARD);
-        // One pass per level (16^2 -> full resolution); the first pass also drops uncovered cells.
-        for (int pass = 0; pass < levels; ++pass) {
-            const int next = 1 - current;
-            glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, m_feedback.id());
-            glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_lists[next].id());
-            m_vaos[current].bind();
-            glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, m_written.id());
-            glBeginTransformFeedback(GL_POINTS);
-            glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
-            glEndTransformFeedback();
-            glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-            glGetQueryObjectuiv(m_written.id(), GL_QUERY_RESULT, &count);
-            glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
-            current = next;
-        }
-        glDisable(GL_RASTERIZER_DISCARD);
-    }
+    std::vector<double> perLevel(static_cast<size_t>(levels), 0.0);
+    double subsplats = 0.0, splats = 0.0;
     {
         auto s = ctx.timers.scope("splat");
         m_buffer->begin(*m_eye);
-        m_buffer->bindAtlas();
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-        std::vector<glm::ivec2> origins(kMaxLevels, glm::ivec2(0));
-        for (int k = 0; k < levels; ++k) origins[static_cast<size_t>(k)] = m_buffer->levelOrigin(k);
-        glProgramUniform2iv(m_splat.id(), glGetUniformLocation(m_splat.id(), "u_origins"), kMaxLevels,
-                            &origins[0].x);
-        m_splat.set("u_atlasSize", m_buffer->atlasSize());
-        m_splat.set("u_minDistance2", m_minDistance * m_minDistance);
-        m_eye->geometry().bind(BINDING_TEX_TECH0);
-        m_eye->normal().bind(BINDING_TEX_TECH1);
-        m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
-        m_splat.use();
-        m_vaos[current].bind();
-        glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(count), m_vpls->count());
-        glDisable(GL_BLEND);
+    }
+    // Mode B: one list with w = 0, drawn once per VPL. Mode A: VPLs [first, first + n) with w = VPL.
+    const int lists = perVpl ? vplCount : 1;
+    for (int first = 0; first < lists; first += batch) {
+        const int n = std::min(batch, lists - first);
+        int current = 0;
+        GLuint count = 0;
+        {
+            auto s = ctx.timers.scope("refine");
+            const glm::ivec2 top = m_eye->levelSize(levels - 1);
+            std::vector<glm::ivec4> initial;
+            for (int l = first; l < first + n; ++l)
+                for (int y = 0; y < top.y; ++y)
+                    for (int x = 0; x < top.x; ++x) initial.emplace_back(levels - 1, x, y, perVpl ? l : 0);
+            m_lists[0].upload(0, initial.size() * sizeof(glm::ivec4), initial.data());
+            count = static_cast<GLuint>(initial.size());
+            m_eye->geometry().bind(BINDING_TEX_TECH0);
+            m_eye->refine().bind(BINDING_TEX_TECH1);
+            m_eye->normal().bind(BINDING_TEX_TECH2);
+            ctx.gbuffer.bind();
+            m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_refine.set("u_perVpl", perVpl ? 1 : 0);
+            m_refine.set("u_lobeThreshold", m_lobeThreshold);
+            m_refine.set("u_minDistance2", m_minDistance * m_minDistance);
+            m_refine.use();
+            glEnable(GL_RASTERIZER_DISCARD);
+            // One pass per level (16^2 -> full resolution); the first pass also drops uncovered cells.
+            for (int pass = 0; pass < levels; ++pass) {
+                const int next = 1 - current;
+                glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, m_feedback.id());
+                glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_lists[next].id());
+                m_vaos[current].bind();
+                glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, m_written.id());
+                glBeginTransformFeedback(GL_POINTS);
+                glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
+                glEndTransformFeedback();
+                glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+                glGetQueryObjectuiv(m_written.id(), GL_QUERY_RESULT, &count);
+                glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+                current = next;
+            }
+            glDisable(GL_RASTERIZER_DISCARD);
+        }
+        {
+            auto s = ctx.timers.scope("splat");
+            m_buffer->bindAtlas();
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_STENCIL_TEST);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            std::vector<glm::ivec2> origins(kMaxLevels, glm::ivec2(0));
+            for (int k = 0; k < levels; ++k) origins[static_cast<size_t>(k)] = m_buffer->levelOrigin(k);
+            glProgramUniform2iv(m_splat.id(), glGetUniformLocation(m_splat.id(), "u_origins"), kMaxLevels,
+                                &origins[0].x);
+            m_splat.set("u_atlasSize", m_buffer->atlasSize());
+            m_splat.set("u_minDistance2", m_minDistance * m_minDistance);
+            m_splat.set("u_perVpl", perVpl ? 1 : 0);
+            m_eye->geometry().bind(BINDING_TEX_TECH0);
+            m_eye->normal().bind(BINDING_TEX_TECH1);
+            m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_splat.use();
+            m_vaos[current].bind();
+            glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(count), perVpl ? 1 : vplCount);
+            glDisable(GL_BLEND);
+        }
+        // Subsplats per level (Table 3.1): read back the final list (16 bytes per subsplat).
+        std::vector<glm::ivec4> list(count);
+        if (count > 0) m_lists[current].download(0, list.size() * sizeof(glm::ivec4), list.data());
+        for (const glm::ivec4& sp : list)
+            if (sp.x >= 0 && sp.x < levels) perLevel[static_cast<size_t>(sp.x)] += 1.0;
+        subsplats += static_cast<double>(count);
+        splats += static_cast<double>(count) * (perVpl ? 1.0 : static_cast<double>(vplCount));
     }
     {
         auto s = ctx.timers.scope("upsample");
         m_buffer->upsample();
         m_buffer->combine(ctx.gbuffer, indirect, m_detailModulation ? m_detailAlpha : 0.0f);
     }
-    // Subsplats per level (Table 3.1): read back the final list (16 bytes per subsplat).
-    std::vector<glm::ivec4> list(count);
-    if (count > 0) m_lists[current].download(0, list.size() * sizeof(glm::ivec4), list.data());
-    std::vector<double> perLevel(static_cast<size_t>(levels), 0.0);
-    for (const glm::ivec4& s : list)
-        if (s.x >= 0 && s.x < levels) perLevel[static_cast<size_t>(s.x)] += 1.0;
     for (int k = 0; k < levels; ++k) ctx.counters[fmt::format("subsplats/level-{}", k)] = perLevel[static_cast<size_t>(k)];
-    ctx.counters["vpls"] = static_cast<double>(m_vpls->count());
-    ctx.counters["subsplats"] = static_cast<double>(count);
-    ctx.counters["fillFraction"] = static_cast<double>(count) / (static_cast<double>(base.x) * base.y);
+    ctx.counters["vpls"] = static_cast<double>(vplCount);
+    // Mode B: entries of the shared list; mode A: the sum over the per-VPL lists (Table 3.1's count).
+    ctx.counters["subsplats"] = subsplats;
+    ctx.counters["splats"] = splats;  // subsplat-VPL pairs drawn
+    ctx.counters["fillFraction"] = splats / (static_cast<double>(vplCount) * static_cast<double>(perList));
 }
 
 }  // namespace bounce

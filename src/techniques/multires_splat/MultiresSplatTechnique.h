@@ -1,11 +1,15 @@
 #pragma once
-// `multires-splat`: multiresolution splatting, Nichols (2010) Ch. 3 (Nichols & Wyman, I3D 2009), mode B
-// (one shared subsplat list per frame, from depth and normal discontinuities).
+// `multires-splat`: multiresolution splatting, Nichols (2010) Ch. 3 (Nichols & Wyman, I3D 2009): mode B
+// (one shared subsplat list per frame, from depth and normal discontinuities; the default) and mode A
+// (one list per VPL, additionally split where the glossy light toward that VPL varies).
 #include "techniques/Technique.h"
 #include "techniques/nichols/MultiresBuffer.h"
 #include "techniques/nichols/RegularVpls.h"
 
+#include <array>
 #include <optional>
+#include <string>
+#include <string_view>
 
 namespace bounce {
 
@@ -18,7 +22,12 @@ public:
 
     const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
 
+    static constexpr std::array<std::string_view, 2> kRefinements{"shared", "per-vpl"};
+
 private:
+    std::string m_refinement{"shared"};  // §3.2.3: mode B is the thesis's default
+    float m_lobeThreshold = 1e-5f;       // W/(m^2 sr); mode A's T (assumption: the thesis gives none; on the
+                                         // 64^2 glossy-floor test 1e-3 split too few subsplats to help)
     int m_rsmSize = 256;
     int m_vplGrid = 16;            // thesis 16^2..128^2 VPLs
     int m_eyeCoarsest = 16;        // §3.2.3: start from the 256 subsplats of 16^2
