@@ -14,38 +14,10 @@ using namespace bounce;
 
 namespace {
 
-constexpr float kAlbedo = 0.5f;
-constexpr float kPlaneHalf = 2.0f;  // metres
+constexpr float kAlbedo = gputest::kPlaneAlbedo;
+using gputest::kPlaneHalf;
 
-// A horizontal plane (y = 0) of albedo kAlbedo viewed from straight above by an orthographic
-// camera, so pixel (x, y) maps linearly to the plane point.
-Scene planeScene(const Light& light) {
-    Scene s;
-    s.name = "plane";
-    Mesh m;
-    m.name = "plane";
-    m.positions = {{-kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, kPlaneHalf}, {-kPlaneHalf, 0, kPlaneHalf}};
-    m.normals.assign(4, glm::vec3(0, 1, 0));
-    m.indices = {0, 2, 1, 0, 3, 2};
-    s.meshes.push_back(m);
-    Material mat;
-    mat.name = "grey";
-    mat.baseColor = glm::vec3(kAlbedo);
-    s.materials.push_back(mat);
-    Object o;
-    o.name = "plane";
-    s.objects.push_back(o);
-    s.lights.push_back(light);
-    s.camera.projection = Projection::Orthographic;
-    s.camera.orthoHeight = 2.0f * kPlaneHalf;
-    s.camera.position = {0, 5, 0};
-    s.camera.target = {0, 0, 0};
-    s.camera.up = {0, 0, -1};
-    s.camera.nearPlane = 0.1f;
-    s.camera.farPlane = 10.0f;
-    EXPECT_TRUE(finalizeScene(s).ok());
-    return s;
-}
+Scene planeScene(const Light& light) { return gputest::planeScene(light, Projection::Orthographic); }
 
 // World point on the plane seen by pixel (x, y) of a size x size image (row 0 at the top, -z).
 glm::vec3 planePoint(int x, int y, int size) {

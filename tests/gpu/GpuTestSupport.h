@@ -3,6 +3,7 @@
 // context is a failure, elsewhere the GPU tests skip. Every test fails if KHR_debug reported a GL
 // error while it ran.
 #include "gpu/Context.h"
+#include "scene/SceneLoader.h"
 
 #include <gtest/gtest.h>
 
@@ -48,5 +49,40 @@ protected:
         }
     }
 };
+
+constexpr float kPlaneAlbedo = 0.5f;
+constexpr float kPlaneHalf = 2.0f;  // metres
+
+// A horizontal grey Lambertian plane (y = 0, half-size kPlaneHalf, albedo kPlaneAlbedo) under
+// `light`, seen from 5 m straight above: orthographically (pixel (x, y) maps linearly to the plane,
+// row 0 at -z) or in perspective.
+inline Scene planeScene(const Light& light, Projection projection = Projection::Perspective) {
+    Scene s;
+    s.name = "plane";
+    Mesh m;
+    m.name = "plane";
+    m.positions = {{-kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, kPlaneHalf}, {-kPlaneHalf, 0, kPlaneHalf}};
+    m.normals.assign(4, glm::vec3(0, 1, 0));
+    m.indices = {0, 2, 1, 0, 3, 2};
+    s.meshes.push_back(m);
+    Material mat;
+    mat.name = "grey";
+    mat.baseColor = glm::vec3(kPlaneAlbedo);
+    s.materials.push_back(mat);
+    Object o;
+    o.name = "plane";
+    s.objects.push_back(o);
+    s.lights.push_back(light);
+    s.camera.projection = projection;
+    s.camera.orthoHeight = 2.0f * kPlaneHalf;
+    // Perspective views are offset by 1 cm so the view direction is not parallel to `up`.
+    s.camera.position = projection == Projection::Orthographic ? glm::vec3(0, 5, 0) : glm::vec3(0, 5, 0.01f);
+    s.camera.target = {0, 0, 0};
+    s.camera.up = {0, 0, -1};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 10.0f;
+    EXPECT_TRUE(finalizeScene(s).ok());
+    return s;
+}
 
 }  // namespace bounce::gputest

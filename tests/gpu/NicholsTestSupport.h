@@ -2,6 +2,7 @@
 // Helpers of the Nichols (2010) technique tests (rsm, isr): render a technique's indirect light with
 // settings, a plane scene for closed-form RSM fluxes, and the error measures of the thesis's
 // Figs. 4.9/4.13 (relative RMS error against the million-VPL gather).
+#include "GpuTestSupport.h"
 #include "core/Settings.h"
 #include "render/RenderSettings.h"
 #include "scene/SceneLoader.h"
@@ -69,34 +70,8 @@ inline bool finiteAndNonNegative(const Image& image) {
     return true;
 }
 
-constexpr float kPlaneAlbedo = 0.5f;
-constexpr float kPlaneHalf = 2.0f;  // metres
-
-// A horizontal grey plane (y = 0, half-size kPlaneHalf) under `light`, seen from above.
-inline Scene planeScene(const Light& light) {
-    Scene s;
-    s.name = "plane";
-    Mesh m;
-    m.name = "plane";
-    m.positions = {{-kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, -kPlaneHalf}, {kPlaneHalf, 0, kPlaneHalf}, {-kPlaneHalf, 0, kPlaneHalf}};
-    m.normals.assign(4, glm::vec3(0, 1, 0));
-    m.indices = {0, 2, 1, 0, 3, 2};
-    s.meshes.push_back(m);
-    Material mat;
-    mat.name = "grey";
-    mat.baseColor = glm::vec3(kPlaneAlbedo);
-    s.materials.push_back(mat);
-    Object o;
-    o.name = "plane";
-    s.objects.push_back(o);
-    s.lights.push_back(light);
-    s.camera.position = {0, 5, 0.01f};
-    s.camera.target = {0, 0, 0};
-    s.camera.up = {0, 0, -1};
-    s.camera.nearPlane = 0.1f;
-    s.camera.farPlane = 10.0f;
-    EXPECT_TRUE(finalizeScene(s).ok());
-    return s;
-}
+using gputest::kPlaneAlbedo;
+using gputest::kPlaneHalf;
+using gputest::planeScene;
 
 }  // namespace bounce::nicholstest
