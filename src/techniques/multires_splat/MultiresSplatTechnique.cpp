@@ -33,6 +33,7 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
 
 #include <fmt/format.h>
 
@@ -49,6 +50,11 @@ constexpr int kMaxLevels = 16;            // splat.vert u_origins[16]
 constexpr size_t kListBudgetBytes = size_t{64} << 20;
 }  // namespace
 
+void MultiresSplatTechnique::buildEye(FrameContext& ctx) {
+    m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds,
+                    m_curvature ? std::optional<float>(m_curvatureThreshold) : std::nullopt);
+}
+
 void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
@@ -62,9 +68,17 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
             "shared: mode B, one geometric list for all VPLs (thesis default, §3.2.3); per-vpl: mode A, one list per "
             "VPL also split where the glossy light toward it varies (§3.2.3.1)",
             kRefinements);
-    v.field("lobeThreshold", m_lobeThreshold,
-            "mode A SamplesDiffer threshold T on glossy radiance, W/(m^2 sr) (assumption: the thesis gives none)", 0.0f,
-            1e9f);
+    v.field("illuminationContrast", m_illuminationContrast,
+            "mode A SamplesDiffer threshold T, relative: split where max - min of the children's glossy radiance toward "
+            "the VPL exceeds T x their mean radiance from it (Lambert + glossy; a black floor keeps unlit regions coarse); "
+            "unitless, assumption (the thesis's T is absolute and unstated)",
+            0.0f, 1e9f);
+    v.field("glossyShading", m_glossyShading,
+            "mode A splats the receiver's full BRDF toward the eye (Lambert + GGX lobe of common/brdf.glsl); off: "
+            "Lambertian, like mode B and the thesis's splats");
+    v.field("curvature", m_curvature, "§3.3.1: also refine where Eq. 3.1's curvature max-mipmap exceeds curvatureThreshold");
+    v.field("curvatureThreshold", m_curvatureThreshold,
+            "max curvature kappa = 2 sin(angle / 2) between neighbouring pixels, 0..2 (Fig. 3.10: 0.1, 0.3)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
 }
 
@@ -74,6 +88,12 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_buffer, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_glossy, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_glossyCombine, gl::Program::build({"multiresSplat.glossyCombine",
+                                                    {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                     {GL_FRAGMENT_SHADER, "techniques/multires_splat/glossy_combine.frag"}}}));
+    m_splatFbo = gl::Framebuffer::create("multiresSplat.splatFbo");
+    m_glossyFbo = gl::Framebuffer::create("multiresSplat.glossyFbo");
     BOUNCE_TRY(m_refine, gl::Program::build({"multiresSplat.refine",
                                              {{GL_VERTEX_SHADER, "techniques/multires_splat/refine.vert"},
                                               {GL_GEOMETRY_SHADER, "techniques/multires_splat/refine.geom"}},
@@ -91,7 +111,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("rsm");
         if (!m_rsm->render(ctx, m_rsmSize)) {
-            m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds);
+            buildEye(ctx);
             m_buffer->begin(*m_eye);  // empty atlas: zero indirect light
             m_buffer->upsample();
             m_buffer->combine(ctx.gbuffer, indirect);
@@ -104,11 +124,12 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     }
     {
         auto s = ctx.timers.scope("min-max-mipmap");
-        m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds);
+        buildEye(ctx);
     }
     const int levels = m_eye->levels();
     BOUNCE_CHECK(levels <= kMaxLevels, "multires-splat supports up to {} levels", kMaxLevels);
     const bool perVpl = m_refinement == "per-vpl";
+    const bool glossy = perVpl && m_glossyShading;
     const glm::ivec2 base = m_eye->levelSize(0);
     const size_t perList = static_cast<size_t>(base.x) * base.y;  // a list never exceeds one subsplat per pixel
     const int vplCount = m_vpls->count();
@@ -134,6 +155,13 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("splat");
         m_buffer->begin(*m_eye);
+        if (glossy) {
+            m_glossy->begin(*m_eye);
+            m_splatFbo.attach(GL_COLOR_ATTACHMENT0, m_buffer->atlas());
+            m_splatFbo.attach(GL_COLOR_ATTACHMENT1, m_glossy->atlas());
+            m_splatFbo.setDrawBuffers(2);
+            BOUNCE_CHECK(m_splatFbo.complete(), "multires-splat glossy splat framebuffer");
+        }
     }
     // Mode B: one list with w = 0, drawn once per VPL. Mode A: VPLs [first, first + n) with w = VPL.
     const int lists = perVpl ? vplCount : 1;
@@ -156,7 +184,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_refine.set("u_perVpl", perVpl ? 1 : 0);
-            m_refine.set("u_lobeThreshold", m_lobeThreshold);
+            m_refine.set("u_relativeThreshold", m_illuminationContrast);
             m_refine.set("u_minDistance2", m_minDistance * m_minDistance);
             m_refine.use();
             glEnable(GL_RASTERIZER_DISCARD);
@@ -179,7 +207,12 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
         }
         {
             auto s = ctx.timers.scope("splat");
-            m_buffer->bindAtlas();
+            if (glossy) {
+                m_splatFbo.bind();
+                glViewport(0, 0, m_buffer->atlasSize().x, m_buffer->atlasSize().y);
+            } else {
+                m_buffer->bindAtlas();
+            }
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_STENCIL_TEST);
             glEnable(GL_BLEND);
@@ -191,8 +224,10 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             m_splat.set("u_atlasSize", m_buffer->atlasSize());
             m_splat.set("u_minDistance2", m_minDistance * m_minDistance);
             m_splat.set("u_perVpl", perVpl ? 1 : 0);
+            m_splat.set("u_glossy", glossy ? 1 : 0);
             m_eye->geometry().bind(BINDING_TEX_TECH0);
-            m_eye->normal().bind(BINDING_TEX_TECH1);
+            m_eye->normal().bind(BINDING_TEX_TECH2);
+            ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_splat.use();
             m_vaos[current].bind();
@@ -210,7 +245,26 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("upsample");
         m_buffer->upsample();
-        m_buffer->combine(ctx.gbuffer, indirect, m_detailModulation ? m_detailAlpha : 0.0f);
+        const float detailAlpha = m_detailModulation ? m_detailAlpha : 0.0f;
+        m_buffer->combine(ctx.gbuffer, indirect, detailAlpha);
+        if (glossy) {
+            m_glossy->upsample();
+            m_glossyFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+            m_glossyFbo.setDrawBuffers(1);
+            BOUNCE_CHECK(m_glossyFbo.complete(), "multires-splat glossy combine framebuffer");
+            m_glossyFbo.bind();
+            glViewport(0, 0, indirect.width(), indirect.height());
+            glDisable(GL_DEPTH_TEST);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            ctx.gbuffer.bind();
+            m_glossy->result().bind(BINDING_TEX_TECH0);
+            m_glossyCombine.set("u_detailAlpha", detailAlpha);
+            m_glossyCombine.use();
+            gl::Context::current()->bindEmptyVertexArray();
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glDisable(GL_BLEND);
+        }
     }
     for (int k = 0; k < levels; ++k) ctx.counters[fmt::format("subsplats/level-{}", k)] = perLevel[static_cast<size_t>(k)];
     ctx.counters["vpls"] = static_cast<double>(vplCount);

@@ -21,13 +21,20 @@ public:
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
 
     const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
+    const nichols::MinMaxPyramid& eyePyramid() const { return *m_eye; }
 
     static constexpr std::array<std::string_view, 2> kRefinements{"shared", "per-vpl"};
 
 private:
+    void buildEye(FrameContext& ctx);
+
     std::string m_refinement{"shared"};  // §3.2.3: mode B is the thesis's default
-    float m_lobeThreshold = 1e-5f;       // W/(m^2 sr); mode A's T (assumption: the thesis gives none; on the
-                                         // 64^2 glossy-floor test 1e-3 split too few subsplats to help)
+    // Mode A's relative SamplesDiffer threshold T (unitless; assumption: the thesis's T is absolute and
+    // unstated). See docs/techniques/multires-splat.md for the measurements behind the value.
+    float m_illuminationContrast = 0.01f;
+    bool m_glossyShading = true;  // mode A splats the receiver's full BRDF (off: Lambertian, as mode B)
+    bool m_curvature = false;     // §3.3.1's curvature mipmap is optional; the thesis's ch. 3 default is normals
+    float m_curvatureThreshold = 0.3f;  // Fig. 3.10 (0.1 and 0.3; the higher one refines less)
     int m_rsmSize = 256;
     int m_vplGrid = 16;            // thesis 16^2..128^2 VPLs
     int m_eyeCoarsest = 16;        // §3.2.3: start from the 256 subsplats of 16^2
@@ -39,7 +46,9 @@ private:
     std::optional<nichols::RegularVpls> m_vpls;
     std::optional<nichols::MinMaxPyramid> m_eye;
     std::optional<nichols::MultiresBuffer> m_buffer;
-    gl::Program m_refine, m_splat;
+    std::optional<nichols::MultiresBuffer> m_glossy;  // mode A's glossy radiance, same levels as m_buffer
+    gl::Program m_refine, m_splat, m_glossyCombine;
+    gl::Framebuffer m_splatFbo, m_glossyFbo;  // mode A: both atlases (MRT); indirect target (glossy added)
     gl::Buffer m_lists[2];
     gl::VertexArray m_vaos[2];
     gl::TransformFeedback m_feedback;
