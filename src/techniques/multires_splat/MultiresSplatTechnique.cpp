@@ -3,27 +3,34 @@
 // (refinement=per-vpl, §3.2.3.1).
 //
 // Passes (timers): "rsm" (light 0's RSM), "vpl-cache" (regular vplGrid^2 VPLs), "min-max-mipmap" (eye
-// pyramid: depth-derivative max-mipmap and per-component normal min-max down to 16^2, refine flags with
-// the diagonal-neighbour test), "refine" (iterative subsplat refinement: all cells of the coarsest level,
-// then one geometry-shader pass per level that splits refined subsplats into their four children,
-// captured by transform feedback into ping-pong buffers), "splat" (the shared list drawn as GL_POINTS
-// once per VPL into the flattened multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp),
-// "upsample" (coarse-to-fine, §3.2.5, then x albedo/pi).
+// pyramid: depth-derivative max-mipmap and per-component normal min-max down to 16^2, optionally the
+// curvature max-mipmap of §3.3.1 / Eq. 3.1, refine flags with the diagonal-neighbour test), "refine"
+// (iterative subsplat refinement: all cells of the coarsest level, then one geometry-shader pass per
+// level that splits refined subsplats into their four children, captured by transform feedback into
+// ping-pong buffers), "splat" (the shared list drawn as GL_POINTS once per VPL into the flattened
+// multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp), "upsample" (coarse-to-fine, §3.2.5,
+// then x albedo/pi).
 // Mode A: every subsplat carries its VPL index (w), the initial list holds the coarsest cells once per
-// VPL, and the refine pass also splits a subsplat when the GGX glossy radiance toward its VPL, evaluated
-// at the four children, differs by more than lobeThreshold in r, g or b (the thesis's SamplesDiffer,
-// here OR-ed with the geometric flags so a Lambertian scene gives mode B's lists); each subsplat is then
-// splatted with its own VPL only. VPLs are processed in batches whose worst-case lists fit 64 MiB.
+// VPL, and the refine pass also splits a subsplat when the glossy radiance toward the eye from its VPL,
+// evaluated at the four children, varies by more than illuminationContrast times the children's mean
+// radiance from that VPL (the thesis's SamplesDiffer made relative, with a black floor; OR-ed with the
+// geometric flags so a Lambertian scene gives mode B's lists); each subsplat is then splatted with its
+// own VPL only, and (glossyShading, default on) carries the receiver's full BRDF: the Lambert part as
+// irradiance into the usual buffer (x albedo/pi per pixel after upsampling, as mode B), the GGX lobe of
+// common/brdf.glsl toward the eye as radiance at the subsplat's patch into a second buffer (same
+// levels, upsampled the same way, added). Its limit is `rsm glossy=true formFactor=point` with the same
+// VPLs. VPLs are processed in batches whose worst-case lists fit 64 MiB.
 // Counters: vpls, subsplats (B: entries of the shared list; A: sum over the per-VPL lists), splats
 // (subsplat-VPL pairs drawn), fillFraction = splats / (VPLs x pixels) (R2).
 //
-// Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5).
-// Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the curvature mipmap,
-// glossy shading of the splatted light (both modes splat irradiance and shade it Lambertian, like the
-// rsm gather; mode A uses the lobe only to decide refinement).
-// Deviation (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
-// alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007), and the glossy
-// material is read from the G-buffer at each child's central pixel.
+// Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5); it scales the glossy part too.
+// Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the linear-depth
+// min-max variant, the nearest/naive-bilinear upsampling modes of Fig. 3.5.
+// Deviations (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
+// alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007); the glossy
+// material is read from the G-buffer at each cell's central pixel; T is relative (the thesis's is an
+// unstated absolute radiance); the Lambert part of mode A's splats is applied per pixel rather than
+// at the patch (identical at full resolution, keeps texture detail, keeps Lambertian scenes = mode B).
 // Deviations: the geometry shader runs four instances per subsplat, each emitting at most one point
 // (the thesis's shader emits up to four): on llvmpipe, multi-vertex geometry-shader output captured by
 // transform feedback lost primitives (measured: 2251 in, 2155 out of a pass-through pass); a flattened atlas instead of one render target per level (same texels); the refinement
