@@ -132,6 +132,8 @@ TEST_F(MultiresSplatGpuTest, PerVplRefinementRefinesNearGlossyHighlights) {
     // A coarse geometric criterion (relative depth slope 0.5 per pixel) leaves the floor coarse in mode B.
     auto shared = withRefinement("shared"), perVplSettings = withRefinement("per-vpl");
     shared["depthThreshold"] = perVplSettings["depthThreshold"] = "0.5";
+    // Refinement only: Lambertian shading like the limit (glossy shading: MultiresSplatGlossyGpuTest).
+    perVplSettings["glossyShading"] = "false";
     auto sharedPipeline = makePipeline(scene, "multires-splat", shared, kSize);
     auto perVpl = makePipeline(scene, "multires-splat", perVplSettings, kSize);
     const FrameStats b = sharedPipeline->renderFrame(0), a = perVpl->renderFrame(0);

@@ -1,24 +1,22 @@
-// Eq. 3.2 for one subsplat and one VPL (Nichols 2010 §3.2.4), Lambertian receiver handled at the end:
+// Eq. 3.2 for one subsplat and one VPL (Nichols 2010 §3.2.4):
 //   E = Phi_l <V_ls, N_l> <V_sl, N_s> / (pi max(|V_ls|^2, r_min^2))
 // at the subsplat's patch (mean position and normal of its covered pixels), added into the atlas
-// (blend ONE, ONE; alpha counts the VPLs, so alpha > 0 marks a rendered texel for upsampling).
-// Host uniforms: u_minDistance2 (m^2). Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), Vpl[]
-// (BINDING_SSBO_TECH0). Output: irradiance W/m^2.
-#include "techniques/nichols/vpl.glsl"
-layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
-layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
-layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
-uniform float u_minDistance2;
+// (blend ONE, ONE; alpha counts the VPLs, so alpha > 0 marks a rendered texel for upsampling). The
+// Lambert part of the receiver's BRDF is applied per pixel after upsampling (combine.frag).
+// Mode A with glossy shading (u_glossy) also writes the glossy radiance f_spec(V_sl, V_eye) * E at the
+// patch (common/brdf.glsl's GGX lobe, material of the cell's central pixel) to a second atlas.
+// Host uniforms: u_minDistance2 (m^2), u_glossy. Inputs: see subsplat.glsl.
+// Outputs: location 0 irradiance W/m^2; location 1 (u_glossy) glossy radiance W/(m^2 sr).
+#include "techniques/multires_splat/subsplat.glsl"
+uniform bool u_glossy;
 flat in ivec4 v_subsplat;
 flat in int v_vpl;
 layout(location = 0) out vec4 o_irradiance;
+layout(location = 1) out vec4 o_glossy;
 void main() {
-    ivec3 cell = ivec3(v_subsplat.yz, 0);
-    int level = v_subsplat.x;
-    vec4 g = texelFetch(s_geometry, cell, level);
-    vec3 x = g.xyz / g.w;
-    vec3 n = normalize(texelFetch(s_normal, cell, level).xyz + vec3(0.0, 0.0, 1e-12));
+    Patch p = subsplatPatch(v_subsplat.x, v_subsplat.yz);
     Vpl v = u_vpls[v_vpl];
-    vec3 e = v.position.w > 0.5 ? vplIrradiance(v, x, n, false, u_minDistance2) : vec3(0.0);
+    vec3 e = patchIrradiance(p, v);
     o_irradiance = vec4(e, 1.0);
+    o_glossy = vec4(u_glossy ? patchGlossyRadiance(p, v, e) : vec3(0.0), 1.0);
 }

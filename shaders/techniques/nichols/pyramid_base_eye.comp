@@ -1,7 +1,12 @@
 // Base level of the eye-space min-max pyramid (Nichols 2010 §3.2.2) from the camera G-buffer:
 // position, normal, and the relative linear-depth derivative sqrt(dz/dx^2 + dz/dy^2) / z with the
 // larger of the forward and backward differences (so a pixel on either side of a depth edge sees it).
-// Inputs: G-buffer, u_frame. Outputs: pyramid level 0 (see pyramid.glsl), images BINDING_IMG0..3.
+// Optional (u_curvature, §3.3.1): Eq. 3.1's curvature kappa = 2 sin(arccos(N1.N2) / 2) between this pixel
+// and each covered 4-neighbour, the max of the four (so pixels on both sides of a crease see it),
+// computed as the chord |N1 - N2| of the unit normals, equal to 2 sin(theta / 2) and exact (0) for
+// equal normals where arccos of a rounded dot product is not.
+// Host uniforms: u_size, u_curvature. Inputs: G-buffer, u_frame.
+// Outputs: pyramid level 0 (see pyramid.glsl), images BINDING_IMG0..3, curvature image BINDING_IMG4.
 #include "common/gbuffer.glsl"
 #include "common/frame.glsl"
 #include "techniques/nichols/pyramid.glsl"
@@ -10,7 +15,9 @@ layout(rgba32f, binding = BINDING_IMG0) writeonly uniform image2DArray i_geometr
 layout(rgba32f, binding = BINDING_IMG1) writeonly uniform image2DArray i_normal;
 layout(rgba32f, binding = BINDING_IMG2) writeonly uniform image2DArray i_normalMin;
 layout(rgba32f, binding = BINDING_IMG3) writeonly uniform image2DArray i_normalMax;
+layout(rgba32f, binding = BINDING_IMG4) writeonly uniform image2DArray i_curvature;
 uniform ivec2 u_size;
+uniform bool u_curvature;
 
 float viewDepth(ivec2 p, out bool covered) {
     p = clamp(p, ivec2(0), u_size - 1);
@@ -30,11 +37,24 @@ float axisDerivative(ivec2 p, ivec2 step, float z) {
     return d;
 }
 
+float curvature(ivec2 p, vec3 n) {
+    const ivec2 kNeighbours[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    float kappa = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 q = p + kNeighbours[i];
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_size))) continue;
+        Surface s = readSurface(q);
+        if (s.covered) kappa = max(kappa, length(n - s.normal));
+    }
+    return kappa;
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, u_size))) return;
     Surface s = readSurface(p);
     ivec3 t = ivec3(p, 0);
+    if (u_curvature) imageStore(i_curvature, t, vec4(s.covered ? curvature(p, s.normal) : 0.0, 0.0, 0.0, 0.0));
     if (!s.covered) {
         imageStore(i_geometry, t, vec4(0.0));
         imageStore(i_normal, t, vec4(0.0));

@@ -1,11 +1,13 @@
 // Refinement flags of one pyramid level (Nichols 2010 §3.2.3 / §3.4.2 / §4.2.1.1). A cell has a
 // discontinuity when it mixes covered and uncovered texels, its max relative depth derivative exceeds
-// u_depthThreshold, or a normal component's max - min exceeds u_normalThreshold (range 0..2). The
+// u_depthThreshold, a normal component's max - min exceeds u_normalThreshold (range 0..2), or, with
+// u_curvature (eye pyramid, §3.3.1), its max curvature (Eq. 3.1) exceeds u_curvatureThreshold. The
 // test covers the cell and its four diagonal neighbours (§3.4.2; u_edgeNeighbours adds the four edge
 // neighbours). refine(k) = discontinuity(k) OR refine of any child (k >= 2): refinement is monotone up
 // the pyramid, which makes "valid at level k" = !refine(k) AND refine(k+1) select exactly one level
 // per covered pixel.
-// Inputs: level k (images 0..3), refine of level k-1 (image 4). Output: refine of level k (image 5, r32f).
+// Inputs: level k (images 0..3), refine of level k-1 (image 4), curvature of level k (image 6, if u_curvature).
+// Output: refine of level k (image 5, r32f).
 #include "techniques/nichols/pyramid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = BINDING_IMG0) readonly uniform image2DArray i_geometry;
@@ -14,12 +16,15 @@ layout(rgba32f, binding = BINDING_IMG2) readonly uniform image2DArray i_normalMi
 layout(rgba32f, binding = BINDING_IMG3) readonly uniform image2DArray i_normalMax;
 layout(r32f, binding = BINDING_IMG4) readonly uniform image2DArray i_childRefine;
 layout(r32f, binding = BINDING_IMG5) writeonly uniform image2DArray i_refine;
+layout(rgba32f, binding = BINDING_IMG6) readonly uniform image2DArray i_curvature;
 uniform ivec2 u_size;
 uniform ivec2 u_childSize;
 uniform bool u_childHasFlags;
 uniform float u_depthThreshold;
 uniform float u_normalThreshold;
 uniform bool u_edgeNeighbours;
+uniform bool u_curvature;
+uniform float u_curvatureThreshold;
 
 bool discontinuity(ivec3 t) {
     if (any(lessThan(t.xy, ivec2(0))) || any(greaterThanEqual(t.xy, u_size))) return false;
@@ -28,6 +33,7 @@ bool discontinuity(ivec3 t) {
     if (covered > 0.0 && nMin.w > 0.0) return true;
     if (covered == 0.0) return false;
     if (imageLoad(i_normal, t).w > u_depthThreshold) return true;
+    if (u_curvature && imageLoad(i_curvature, t).r > u_curvatureThreshold) return true;
     return any(greaterThan(nMax.xyz - nMin.xyz, vec3(u_normalThreshold)));
 }
 

@@ -1,7 +1,9 @@
 // One level of the min-max pyramid (Nichols 2010 §3.2.2): each texel combines its 2x2 children (3 on
 // the last row/column of odd-sized levels): sums of position, normal, flux and area; max of the depth
-// derivative and of the depth; per-component min/max of the normal; covered/uncovered counts.
-// Host uniforms: u_childSize, u_size, u_hasFlux (light pyramid).
+// derivative and of the depth; per-component min/max of the normal; covered/uncovered counts; the
+// fifth chain is the light pyramid's flux (summed) or the eye pyramid's optional curvature (max only,
+// §3.3.1).
+// Host uniforms: u_childSize, u_size, u_hasFlux (light pyramid), u_hasCurvature (eye pyramid).
 // Inputs: level k-1 (images BINDING_IMG0..4). Outputs: level k (images BINDING_IMG5..9).
 #include "techniques/nichols/pyramid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -18,6 +20,7 @@ layout(rgba32f, binding = BINDING_IMG9) writeonly uniform image2DArray i_fluxOut
 uniform ivec2 u_childSize;
 uniform ivec2 u_size;
 uniform bool u_hasFlux;
+uniform bool u_hasCurvature;
 
 void main() {
     ivec3 t = ivec3(gl_GlobalInvocationID.xyz);
@@ -39,10 +42,11 @@ void main() {
             nMax.xyz = max(nMax.xyz, cMax.xyz);
             nMax.w = max(nMax.w, cMax.w);
             if (u_hasFlux) f += imageLoad(i_fluxIn, c);
+            if (u_hasCurvature) f.r = max(f.r, imageLoad(i_fluxIn, c).r);
         }
     imageStore(i_geometryOut, t, g);
     imageStore(i_normalOut, t, n);
     imageStore(i_normalMinOut, t, nMin);
     imageStore(i_normalMaxOut, t, nMax);
-    if (u_hasFlux) imageStore(i_fluxOut, t, f);
+    if (u_hasFlux || u_hasCurvature) imageStore(i_fluxOut, t, f);
 }

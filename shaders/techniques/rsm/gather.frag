@@ -1,15 +1,21 @@
 // Full-resolution RSM gather (the baseline of Nichols 2010 §4.3 / Fig. 4.8; Dachsbacher & Stamminger
 // 2005): every pixel sums every VPL of the cache, without visibility.
-//   L_indirect = rho_s / pi * sum_j Phi_j <N_j, -l> <N_s, l> / D_j
+//   L_indirect = rho_s / pi * sum_j E_j,   E_j = Phi_j <N_j, -l> <N_s, l> / D_j
 // with D_j = pi * max(r^2, r_min^2) (Eq. 3.2) or pi * r^2 + A_j (Eq. 4.1, disk-to-point).
-// Host uniforms: u_vplCount, u_diskForm, u_minDistance2 (m^2). Inputs: G-buffer, Vpl[] (BINDING_SSBO_TECH0).
-// Output: indirect radiance W/(m^2 sr), RGBA32F.
+// u_glossy (bounce's extension, the limit of multires-splat's mode A): the receiver's full BRDF,
+// L_indirect += sum_j f_spec(l_j, e) E_j with f_spec the GGX lobe of common/brdf.glsl
+// (rsm/glossy.glsl); the thesis's gather is Lambertian.
+// Host uniforms: u_vplCount, u_diskForm, u_minDistance2 (m^2), u_glossy. Inputs: G-buffer, u_frame,
+// Vpl[] (BINDING_SSBO_TECH0). Output: indirect radiance W/(m^2 sr), RGBA32F.
 #include "common/gbuffer.glsl"
+#include "common/frame.glsl"
+#include "techniques/rsm/glossy.glsl"
 #include "techniques/nichols/vpl.glsl"
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
 uniform int u_vplCount;
 uniform bool u_diskForm;
 uniform float u_minDistance2;
+uniform bool u_glossy;
 layout(location = 0) out vec4 o_radiance;
 
 void main() {
@@ -18,11 +24,16 @@ void main() {
         o_radiance = vec4(0.0);
         return;
     }
-    vec3 irradiance = vec3(0.0);
+    vec3 e = normalize(u_frame.eyePosition.xyz - s.position);
+    vec3 irradiance = vec3(0.0), glossy = vec3(0.0);
     for (int j = 0; j < u_vplCount; ++j) {
         Vpl v = u_vpls[j];
         if (v.position.w < 0.5) continue;
-        irradiance += vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
+        vec3 ej = vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
+        irradiance += ej;
+        if (u_glossy)
+            glossy += glossyBrdf(s.normal, normalize(v.position.xyz - s.position), e, s.albedo, s.roughness, s.metallic,
+                                 s.specularF0) * ej;
     }
-    o_radiance = vec4((1.0 - s.metallic) * s.albedo / 3.14159265358979 * irradiance, 1.0);
+    o_radiance = vec4((1.0 - s.metallic) * s.albedo * kInvPi * irradiance + glossy, 1.0);
 }

@@ -3,27 +3,34 @@
 // (refinement=per-vpl, §3.2.3.1).
 //
 // Passes (timers): "rsm" (light 0's RSM), "vpl-cache" (regular vplGrid^2 VPLs), "min-max-mipmap" (eye
-// pyramid: depth-derivative max-mipmap and per-component normal min-max down to 16^2, refine flags with
-// the diagonal-neighbour test), "refine" (iterative subsplat refinement: all cells of the coarsest level,
-// then one geometry-shader pass per level that splits refined subsplats into their four children,
-// captured by transform feedback into ping-pong buffers), "splat" (the shared list drawn as GL_POINTS
-// once per VPL into the flattened multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp),
-// "upsample" (coarse-to-fine, §3.2.5, then x albedo/pi).
+// pyramid: depth-derivative max-mipmap and per-component normal min-max down to 16^2, optionally the
+// curvature max-mipmap of §3.3.1 / Eq. 3.1, refine flags with the diagonal-neighbour test), "refine"
+// (iterative subsplat refinement: all cells of the coarsest level, then one geometry-shader pass per
+// level that splits refined subsplats into their four children, captured by transform feedback into
+// ping-pong buffers), "splat" (the shared list drawn as GL_POINTS once per VPL into the flattened
+// multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp), "upsample" (coarse-to-fine, §3.2.5,
+// then x albedo/pi).
 // Mode A: every subsplat carries its VPL index (w), the initial list holds the coarsest cells once per
-// VPL, and the refine pass also splits a subsplat when the GGX glossy radiance toward its VPL, evaluated
-// at the four children, differs by more than lobeThreshold in r, g or b (the thesis's SamplesDiffer,
-// here OR-ed with the geometric flags so a Lambertian scene gives mode B's lists); each subsplat is then
-// splatted with its own VPL only. VPLs are processed in batches whose worst-case lists fit 64 MiB.
+// VPL, and the refine pass also splits a subsplat when the glossy radiance toward the eye from its VPL,
+// evaluated at the four children, varies by more than illuminationContrast times the children's mean
+// radiance from that VPL (the thesis's SamplesDiffer made relative, with a black floor; OR-ed with the
+// geometric flags so a Lambertian scene gives mode B's lists); each subsplat is then splatted with its
+// own VPL only, and (glossyShading, default on) carries the receiver's full BRDF: the Lambert part as
+// irradiance into the usual buffer (x albedo/pi per pixel after upsampling, as mode B), the GGX lobe of
+// common/brdf.glsl toward the eye as radiance at the subsplat's patch into a second buffer (same
+// levels, upsampled the same way, added). Its limit is `rsm glossy=true formFactor=point` with the same
+// VPLs. VPLs are processed in batches whose worst-case lists fit 64 MiB.
 // Counters: vpls, subsplats (B: entries of the shared list; A: sum over the per-VPL lists), splats
 // (subsplat-VPL pairs drawn), fillFraction = splats / (VPLs x pixels) (R2).
 //
-// Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5).
-// Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the curvature mipmap,
-// glossy shading of the splatted light (both modes splat irradiance and shade it Lambertian, like the
-// rsm gather; mode A uses the lobe only to decide refinement).
-// Deviation (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
-// alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007), and the glossy
-// material is read from the G-buffer at each child's central pixel.
+// Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5); it scales the glossy part too.
+// Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the linear-depth
+// min-max variant, the nearest/naive-bilinear upsampling modes of Fig. 3.5.
+// Deviations (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
+// alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007); the glossy
+// material is read from the G-buffer at each cell's central pixel; T is relative (the thesis's is an
+// unstated absolute radiance); the Lambert part of mode A's splats is applied per pixel rather than
+// at the patch (identical at full resolution, keeps texture detail, keeps Lambertian scenes = mode B).
 // Deviations: the geometry shader runs four instances per subsplat, each emitting at most one point
 // (the thesis's shader emits up to four): on llvmpipe, multi-vertex geometry-shader output captured by
 // transform feedback lost primitives (measured: 2251 in, 2155 out of a pass-through pass); a flattened atlas instead of one render target per level (same texels); the refinement
@@ -33,6 +40,7 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
 
 #include <fmt/format.h>
 
@@ -49,6 +57,11 @@ constexpr int kMaxLevels = 16;            // splat.vert u_origins[16]
 constexpr size_t kListBudgetBytes = size_t{64} << 20;
 }  // namespace
 
+void MultiresSplatTechnique::buildEye(FrameContext& ctx) {
+    m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds,
+                    m_curvature ? std::optional<float>(m_curvatureThreshold) : std::nullopt);
+}
+
 void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
@@ -62,9 +75,17 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
             "shared: mode B, one geometric list for all VPLs (thesis default, §3.2.3); per-vpl: mode A, one list per "
             "VPL also split where the glossy light toward it varies (§3.2.3.1)",
             kRefinements);
-    v.field("lobeThreshold", m_lobeThreshold,
-            "mode A SamplesDiffer threshold T on glossy radiance, W/(m^2 sr) (assumption: the thesis gives none)", 0.0f,
-            1e9f);
+    v.field("illuminationContrast", m_illuminationContrast,
+            "mode A SamplesDiffer threshold T, relative: split where max - min of the children's glossy radiance toward "
+            "the VPL exceeds T x their mean radiance from it (Lambert + glossy; a black floor keeps unlit regions coarse); "
+            "unitless, assumption (the thesis's T is absolute and unstated)",
+            0.0f, 1e9f);
+    v.field("glossyShading", m_glossyShading,
+            "mode A splats the receiver's full BRDF toward the eye (Lambert + GGX lobe of common/brdf.glsl); off: "
+            "Lambertian, like mode B and the thesis's splats");
+    v.field("curvature", m_curvature, "§3.3.1: also refine where Eq. 3.1's curvature max-mipmap exceeds curvatureThreshold");
+    v.field("curvatureThreshold", m_curvatureThreshold,
+            "max curvature kappa = 2 sin(angle / 2) between neighbouring pixels, 0..2 (Fig. 3.10: 0.1, 0.3)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
 }
 
@@ -74,6 +95,12 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_buffer, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_glossy, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_glossyCombine, gl::Program::build({"multiresSplat.glossyCombine",
+                                                    {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                     {GL_FRAGMENT_SHADER, "techniques/multires_splat/glossy_combine.frag"}}}));
+    m_splatFbo = gl::Framebuffer::create("multiresSplat.splatFbo");
+    m_glossyFbo = gl::Framebuffer::create("multiresSplat.glossyFbo");
     BOUNCE_TRY(m_refine, gl::Program::build({"multiresSplat.refine",
                                              {{GL_VERTEX_SHADER, "techniques/multires_splat/refine.vert"},
                                               {GL_GEOMETRY_SHADER, "techniques/multires_splat/refine.geom"}},
@@ -91,7 +118,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("rsm");
         if (!m_rsm->render(ctx, m_rsmSize)) {
-            m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds);
+            buildEye(ctx);
             m_buffer->begin(*m_eye);  // empty atlas: zero indirect light
             m_buffer->upsample();
             m_buffer->combine(ctx.gbuffer, indirect);
@@ -104,11 +131,12 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     }
     {
         auto s = ctx.timers.scope("min-max-mipmap");
-        m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds);
+        buildEye(ctx);
     }
     const int levels = m_eye->levels();
     BOUNCE_CHECK(levels <= kMaxLevels, "multires-splat supports up to {} levels", kMaxLevels);
     const bool perVpl = m_refinement == "per-vpl";
+    const bool glossy = perVpl && m_glossyShading;
     const glm::ivec2 base = m_eye->levelSize(0);
     const size_t perList = static_cast<size_t>(base.x) * base.y;  // a list never exceeds one subsplat per pixel
     const int vplCount = m_vpls->count();
@@ -134,6 +162,13 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("splat");
         m_buffer->begin(*m_eye);
+        if (glossy) {
+            m_glossy->begin(*m_eye);
+            m_splatFbo.attach(GL_COLOR_ATTACHMENT0, m_buffer->atlas());
+            m_splatFbo.attach(GL_COLOR_ATTACHMENT1, m_glossy->atlas());
+            m_splatFbo.setDrawBuffers(2);
+            BOUNCE_CHECK(m_splatFbo.complete(), "multires-splat glossy splat framebuffer");
+        }
     }
     // Mode B: one list with w = 0, drawn once per VPL. Mode A: VPLs [first, first + n) with w = VPL.
     const int lists = perVpl ? vplCount : 1;
@@ -156,7 +191,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_refine.set("u_perVpl", perVpl ? 1 : 0);
-            m_refine.set("u_lobeThreshold", m_lobeThreshold);
+            m_refine.set("u_relativeThreshold", m_illuminationContrast);
             m_refine.set("u_minDistance2", m_minDistance * m_minDistance);
             m_refine.use();
             glEnable(GL_RASTERIZER_DISCARD);
@@ -179,7 +214,12 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
         }
         {
             auto s = ctx.timers.scope("splat");
-            m_buffer->bindAtlas();
+            if (glossy) {
+                m_splatFbo.bind();
+                glViewport(0, 0, m_buffer->atlasSize().x, m_buffer->atlasSize().y);
+            } else {
+                m_buffer->bindAtlas();
+            }
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_STENCIL_TEST);
             glEnable(GL_BLEND);
@@ -191,8 +231,10 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             m_splat.set("u_atlasSize", m_buffer->atlasSize());
             m_splat.set("u_minDistance2", m_minDistance * m_minDistance);
             m_splat.set("u_perVpl", perVpl ? 1 : 0);
+            m_splat.set("u_glossy", glossy ? 1 : 0);
             m_eye->geometry().bind(BINDING_TEX_TECH0);
-            m_eye->normal().bind(BINDING_TEX_TECH1);
+            m_eye->normal().bind(BINDING_TEX_TECH2);
+            ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_splat.use();
             m_vaos[current].bind();
@@ -210,7 +252,26 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     {
         auto s = ctx.timers.scope("upsample");
         m_buffer->upsample();
-        m_buffer->combine(ctx.gbuffer, indirect, m_detailModulation ? m_detailAlpha : 0.0f);
+        const float detailAlpha = m_detailModulation ? m_detailAlpha : 0.0f;
+        m_buffer->combine(ctx.gbuffer, indirect, detailAlpha);
+        if (glossy) {
+            m_glossy->upsample();
+            m_glossyFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+            m_glossyFbo.setDrawBuffers(1);
+            BOUNCE_CHECK(m_glossyFbo.complete(), "multires-splat glossy combine framebuffer");
+            m_glossyFbo.bind();
+            glViewport(0, 0, indirect.width(), indirect.height());
+            glDisable(GL_DEPTH_TEST);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            ctx.gbuffer.bind();
+            m_glossy->result().bind(BINDING_TEX_TECH0);
+            m_glossyCombine.set("u_detailAlpha", detailAlpha);
+            m_glossyCombine.use();
+            gl::Context::current()->bindEmptyVertexArray();
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glDisable(GL_BLEND);
+        }
     }
     for (int k = 0; k < levels; ++k) ctx.counters[fmt::format("subsplats/level-{}", k)] = perLevel[static_cast<size_t>(k)];
     ctx.counters["vpls"] = static_cast<double>(vplCount);

@@ -1,7 +1,8 @@
 #pragma once
 // `multires-splat`: multiresolution splatting, Nichols (2010) Ch. 3 (Nichols & Wyman, I3D 2009): mode B
 // (one shared subsplat list per frame, from depth and normal discontinuities; the default) and mode A
-// (one list per VPL, additionally split where the glossy light toward that VPL varies).
+// (one list per VPL, additionally split where the glossy light toward that VPL varies, and shaded with
+// the receiver's full BRDF).
 #include "techniques/Technique.h"
 #include "techniques/nichols/MultiresBuffer.h"
 #include "techniques/nichols/RegularVpls.h"
@@ -21,13 +22,23 @@ public:
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
 
     const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
+    const nichols::MinMaxPyramid& eyePyramid() const { return *m_eye; }
 
     static constexpr std::array<std::string_view, 2> kRefinements{"shared", "per-vpl"};
 
 private:
+    void buildEye(FrameContext& ctx);
+
     std::string m_refinement{"shared"};  // §3.2.3: mode B is the thesis's default
-    float m_lobeThreshold = 1e-5f;       // W/(m^2 sr); mode A's T (assumption: the thesis gives none; on the
-                                         // 64^2 glossy-floor test 1e-3 split too few subsplats to help)
+    // Mode A's relative SamplesDiffer threshold T (unitless; assumption: the thesis's T is absolute and
+    // unstated): 1 % contrast of a VPL's glossy light across a subsplat's quadrants. Measured
+    // (docs/techniques/multires-splat.md): every T in 0.01..1 cuts the error against the glossy limit
+    // 7-10x against no illumination criterion; 0.01 is the largest tried that also lowers the error of
+    // Lambertian-shaded mode A against its own limit on the glossy-floor test.
+    float m_illuminationContrast = 0.01f;
+    bool m_glossyShading = true;  // mode A splats the receiver's full BRDF (off: Lambertian, as mode B)
+    bool m_curvature = false;     // §3.3.1's curvature mipmap is optional; the thesis's ch. 3 default is normals
+    float m_curvatureThreshold = 0.3f;  // Fig. 3.10 (0.1 and 0.3; the higher one refines less)
     int m_rsmSize = 256;
     int m_vplGrid = 16;            // thesis 16^2..128^2 VPLs
     int m_eyeCoarsest = 16;        // §3.2.3: start from the 256 subsplats of 16^2
@@ -39,7 +50,9 @@ private:
     std::optional<nichols::RegularVpls> m_vpls;
     std::optional<nichols::MinMaxPyramid> m_eye;
     std::optional<nichols::MultiresBuffer> m_buffer;
-    gl::Program m_refine, m_splat;
+    std::optional<nichols::MultiresBuffer> m_glossy;  // mode A's glossy radiance, same levels as m_buffer
+    gl::Program m_refine, m_splat, m_glossyCombine;
+    gl::Framebuffer m_splatFbo, m_glossyFbo;  // mode A: both atlases (MRT); indirect target (glossy added)
     gl::Buffer m_lists[2];
     gl::VertexArray m_vaos[2];
     gl::TransformFeedback m_feedback;

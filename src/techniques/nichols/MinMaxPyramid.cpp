@@ -58,23 +58,28 @@ void MinMaxPyramid::allocate(glm::ivec2 size, int layers, int coarsestSize, bool
     m_normalMin = gl::Texture::create("nichols.pyramid.normalMin", d);
     m_normalMax = gl::Texture::create("nichols.pyramid.normalMax", d);
     if (flux) m_flux = gl::Texture::create("nichols.pyramid.flux", d);
+    // RGBA32F like the other chains so that pyramid_reduce.comp's fifth image unit has one format.
+    if (!flux) m_curvature = gl::Texture::create("nichols.pyramid.curvature", d);
     d.format = GL_R32F;
     m_refine = gl::Texture::create("nichols.pyramid.refine", d);
     BOUNCE_CHECK(glm::ivec2(m_sizes.back()) == glm::max(size >> (m_levels - 1), glm::ivec2(1)),
                  "pyramid level sizes follow GL mip sizes");
 }
 
-void MinMaxPyramid::buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t) {
+void MinMaxPyramid::buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t,
+                             std::optional<float> curvatureThreshold) {
     allocate(gbuffer.size(), 1, coarsestSize, false);
     gbuffer.bind();
     m_geometry.bindImage(BINDING_IMG0, GL_WRITE_ONLY, 0, true);
     m_normal.bindImage(BINDING_IMG1, GL_WRITE_ONLY, 0, true);
     m_normalMin.bindImage(BINDING_IMG2, GL_WRITE_ONLY, 0, true);
     m_normalMax.bindImage(BINDING_IMG3, GL_WRITE_ONLY, 0, true);
+    m_curvature.bindImage(BINDING_IMG4, GL_WRITE_ONLY, 0, true);
     m_baseEye.set("u_size", m_sizes[0]);
+    m_baseEye.set("u_curvature", curvatureThreshold ? 1 : 0);
     m_baseEye.use();
     dispatch2D(m_sizes[0], 1);
-    reduceAndFlag(t, false);
+    reduceAndFlag(t, false, curvatureThreshold);
 }
 
 void MinMaxPyramid::buildLight(const ReflectiveShadowMap& rsm, int coarsestSize, const PyramidThresholds& t) {
@@ -90,11 +95,14 @@ void MinMaxPyramid::buildLight(const ReflectiveShadowMap& rsm, int coarsestSize,
     m_baseLight.set("u_size", m_sizes[0]);
     m_baseLight.use();
     dispatch2D(m_sizes[0], m_layers);
-    reduceAndFlag(t, true);
+    reduceAndFlag(t, true, std::nullopt);
 }
 
-void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux) {
-    const gl::Texture* chains[5] = {&m_geometry, &m_normal, &m_normalMin, &m_normalMax, flux ? &m_flux : &m_geometry};
+void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux, std::optional<float> curvatureThreshold) {
+    const bool curvature = curvatureThreshold.has_value();
+    // The fifth chain: summed flux (light), max curvature (eye, optional), else unused.
+    const gl::Texture* fifth = flux ? &m_flux : curvature ? &m_curvature : &m_geometry;
+    const gl::Texture* chains[5] = {&m_geometry, &m_normal, &m_normalMin, &m_normalMax, fifth};
     // Level 0 has no refine flag of its own (the finest level is always valid under a refined parent).
     const float zero = 0.0f;
     glClearTexImage(m_refine.id(), 0, GL_RED, GL_FLOAT, &zero);
@@ -107,18 +115,22 @@ void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux) {
         m_reduce.set("u_childSize", child);
         m_reduce.set("u_size", size);
         m_reduce.set("u_hasFlux", flux ? 1 : 0);
+        m_reduce.set("u_hasCurvature", curvature ? 1 : 0);
         m_reduce.use();
         dispatch2D(size, m_layers);
 
         for (int i = 0; i < 4; ++i) chains[i]->bindImage(BINDING_IMG0 + i, GL_READ_ONLY, level, true);
         m_refine.bindImage(BINDING_IMG4, GL_READ_ONLY, level - 1, true);
         m_refine.bindImage(BINDING_IMG5, GL_WRITE_ONLY, level, true);
+        if (curvature) m_curvature.bindImage(BINDING_IMG6, GL_READ_ONLY, level, true);
         m_flag.set("u_size", size);
         m_flag.set("u_childSize", child);
         m_flag.set("u_childHasFlags", level >= 2 ? 1 : 0);
         m_flag.set("u_depthThreshold", t.depth);
         m_flag.set("u_normalThreshold", t.normal);
         m_flag.set("u_edgeNeighbours", t.edgeNeighbours ? 1 : 0);
+        m_flag.set("u_curvature", curvature ? 1 : 0);
+        m_flag.set("u_curvatureThreshold", curvatureThreshold.value_or(0.0f));
         m_flag.use();
         dispatch2D(size, m_layers);
     }

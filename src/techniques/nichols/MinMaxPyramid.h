@@ -3,9 +3,11 @@
 // (eye space: depth-derivative max-mipmap + per-component normal min-max, Fig. 4.2(c)) or over the
 // RSM (light space, with summed flux and area for VPL clusters and the VPL tree of hisr). Levels
 // halve (floor) down to the first level whose larger side is <= coarsestSize (16 in the thesis).
-// Texel records: shaders/techniques/nichols/pyramid.glsl.
+// Texel records: shaders/techniques/nichols/pyramid.glsl. The eye pyramid can also carry the optional
+// curvature max-mipmap of §3.3.1 (Eq. 3.1), used as an extra refinement criterion.
 #include "techniques/nichols/ReflectiveShadowMap.h"
 
+#include <optional>
 #include <vector>
 
 namespace bounce::nichols {
@@ -20,8 +22,11 @@ class MinMaxPyramid {
 public:
     static Expected<MinMaxPyramid> create();
 
-    // Eye space over the G-buffer (u_frame must be bound).
-    void buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t);
+    // Eye space over the G-buffer (u_frame must be bound). With curvatureThreshold, also builds the
+    // curvature max-mipmap (Eq. 3.1) and flags cells whose max curvature exceeds it (§3.3.1); without
+    // it (isr, hisr, multires-splat's default) the curvature chain is neither built nor read.
+    void buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t,
+                  std::optional<float> curvatureThreshold = std::nullopt);
     // Light space over the RSM.
     void buildLight(const ReflectiveShadowMap& rsm, int coarsestSize, const PyramidThresholds& t);
 
@@ -35,13 +40,16 @@ public:
     const gl::Texture& normalMax() const { return m_normalMax; }
     const gl::Texture& flux() const { return m_flux; }
     const gl::Texture& refine() const { return m_refine; }
+    // Eye pyramid only, valid after a buildEye with a curvature threshold: r = max over the cell's base
+    // texels of Eq. 3.1's kappa = 2 sin(arccos(N1.N2) / 2) to any 4-neighbour (0..2); RGBA32F, gba 0.
+    const gl::Texture& curvature() const { return m_curvature; }
 
 private:
     void allocate(glm::ivec2 size, int layers, int coarsestSize, bool flux);
-    void reduceAndFlag(const PyramidThresholds& t, bool flux);
+    void reduceAndFlag(const PyramidThresholds& t, bool flux, std::optional<float> curvatureThreshold);
 
     gl::Program m_baseEye, m_baseLight, m_reduce, m_flag;
-    gl::Texture m_geometry, m_normal, m_normalMin, m_normalMax, m_flux, m_refine;
+    gl::Texture m_geometry, m_normal, m_normalMin, m_normalMax, m_flux, m_curvature, m_refine;
     std::vector<glm::ivec2> m_sizes;
     glm::ivec2 m_baseSize{0};
     int m_levels = 0, m_layers = 0, m_coarsest = 0;

@@ -4,7 +4,9 @@
 // ReflectiveShadowMap: spot perspective, point/area/wide spot cube, directional orthographic);
 // (2) "VPL cache" — a regular vplGrid^2 grid of VPLs per RSM layer, each carrying its block's summed
 // flux; (3) "gather" — a full-screen pass in which every pixel sums every VPL (Eq. 3.2 or Eq. 4.1), no
-// indirect visibility, radiance = rho / pi * irradiance.
+// indirect visibility, radiance = rho / pi * irradiance. With `glossy` on (bounce's extension, off by
+// default), the GGX lobe of the receiver's BRDF toward the eye is added per VPL: the limit of
+// multires-splat's mode A.
 //
 // Deviations: the thesis's RSM assumes a spot light and equal texel solid angles (Eq. 4.4); here each
 // texel's exact solid angle and the light's actual intensity give the flux in watts, so the
@@ -25,6 +27,8 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (must divide rsmSize); thesis 16..128, = rsmSize for the converged limit", 1, 2048);
     v.field("formFactor", m_formFactor, "disk: Eq. 4.1 disk-to-point form factor; point: Eq. 3.2 with an r^2 clamp", kFormFactors);
     v.field("minDistance", m_minDistance, "r clamp of the point form factor, metres (assumption; the thesis gives no value)", 0.0f, 10.0f);
+    v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
+            "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
 }
 
 Expected<void> RsmTechnique::setup(const SetupContext&) {
@@ -66,6 +70,7 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     m_gather.set("u_vplCount", m_vpls->count());
     m_gather.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
     m_gather.set("u_minDistance2", m_minDistance * m_minDistance);
+    m_gather.set("u_glossy", m_glossy ? 1 : 0);
     m_gather.use();
     gl::Context::current()->bindEmptyVertexArray();
     glDrawArrays(GL_TRIANGLES, 0, 3);

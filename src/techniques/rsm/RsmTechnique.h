@@ -28,6 +28,7 @@ private:
     int m_vplGrid = 16;       // 16^2 = 256 VPLs (Table 4.1)
     std::string m_formFactor{"disk"};
     float m_minDistance = 0.05f;  // metres; Eq. 3.2's r^2 clamp, value not given (assumption)
+    bool m_glossy = false;        // the thesis's gather is Lambertian; on = full BRDF (multires-splat mode A's limit)
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_vpls;
     gl::Program m_gather;

@@ -1,0 +1,47 @@
+// The light of one VPL at one subsplat of multiresolution splatting (Nichols 2010 §3.2.3.1, §3.2.4),
+// shared by the refinement test (refine.geom) and the splat (splat.frag) so that mode A refines on
+// exactly the quantity it splats.
+// A subsplat's patch is the mean position and normal of its covered pixels (eye pyramid); its
+// material is the G-buffer's at the cell's central pixel (the pyramid stores no material).
+// Host uniforms: u_minDistance2 (m^2). Inputs: eye pyramid geometry (BINDING_TEX_TECH0) and normal
+// (BINDING_TEX_TECH2), G-buffer, Vpl[] (BINDING_SSBO_TECH0), u_frame (eye position).
+#include "common/gbuffer.glsl"
+#include "common/frame.glsl"
+#include "techniques/rsm/glossy.glsl"
+#include "techniques/nichols/vpl.glsl"
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
+layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_normal;
+layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
+uniform float u_minDistance2;
+
+struct Patch {
+    vec3 position;
+    vec3 normal;
+    Surface material;  // central pixel; material.covered is false if that pixel is uncovered
+};
+
+Patch subsplatPatch(int level, ivec2 cell) {
+    int side = 1 << level;
+    ivec2 pixel = min(cell * side + side / 2, ivec2(u_frame.viewport.xy) - 1);
+    vec4 g = texelFetch(s_geometry, ivec3(cell, 0), level);
+    Patch p;
+    p.position = g.xyz / max(g.w, 1.0);
+    p.normal = normalize(texelFetch(s_normal, ivec3(cell, 0), level).xyz + vec3(0.0, 0.0, 1e-12));
+    p.material = readSurface(pixel);
+    return p;
+}
+
+// Irradiance at the patch from VPL v, Eq. 3.2 (point form factor, r^2 clamp), W/m^2.
+vec3 patchIrradiance(Patch p, Vpl v) {
+    return v.position.w > 0.5 ? vplIrradiance(v, p.position, p.normal, false, u_minDistance2) : vec3(0.0);
+}
+
+// Glossy radiance toward the eye reflected at the patch from VPL v: f_spec(l, e) * E, W/(m^2 sr);
+// zero where the central pixel is uncovered or Lambertian.
+vec3 patchGlossyRadiance(Patch p, Vpl v, vec3 irradiance) {
+    if (!p.material.covered) return vec3(0.0);
+    vec3 l = normalize(v.position.xyz - p.position);
+    vec3 e = normalize(u_frame.eyePosition.xyz - p.position);
+    Surface m = p.material;
+    return glossyBrdf(p.normal, l, e, m.albedo, m.roughness, m.metallic, m.specularF0) * irradiance;
+}
