@@ -2,12 +2,21 @@
 // 2005): every pixel sums every VPL of the cache, without visibility.
 //   L_indirect = rho_s / pi * sum_j Phi_j <N_j, -l> <N_s, l> / D_j
 // with D_j = pi * max(r^2, r_min^2) (Eq. 3.2) or pi * r^2 + A_j (Eq. 4.1, disk-to-point).
-// Host uniforms: u_vplCount, u_diskForm, u_minDistance2 (m^2). Inputs: G-buffer, Vpl[] (BINDING_SSBO_TECH0).
+// One draw sums the VPL rows [u_rowFirst, u_rowEnd) of the cache (row r = layer * grid + y, grid VPLs
+// each); the host adds the batches by blending (RsmTechnique.cpp). The cache is read as textures in
+// nested loops: on llvmpipe an SSBO index or an integer division per VPL costs more than the VPL's
+// arithmetic (measured in docs/techniques/rsm.md).
+// Host uniforms: u_rowFirst, u_rowEnd, u_grid, u_diskForm, u_minDistance2 (m^2).
+// Inputs: G-buffer, VPL cache textures (BINDING_TEX_TECH0..2: position, normal, flux; vpl.glsl's fields).
 // Output: indirect radiance W/(m^2 sr), RGBA32F.
 #include "common/gbuffer.glsl"
 #include "techniques/nichols/vpl.glsl"
-layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
-uniform int u_vplCount;
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_vplPosition;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_vplNormal;
+layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_vplFlux;
+uniform int u_rowFirst;
+uniform int u_rowEnd;
+uniform int u_grid;
 uniform bool u_diskForm;
 uniform float u_minDistance2;
 layout(location = 0) out vec4 o_radiance;
@@ -19,10 +28,17 @@ void main() {
         return;
     }
     vec3 irradiance = vec3(0.0);
-    for (int j = 0; j < u_vplCount; ++j) {
-        Vpl v = u_vpls[j];
-        if (v.position.w < 0.5) continue;
-        irradiance += vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
+    for (int row = u_rowFirst; row < u_rowEnd; ++row) {
+        const int layer = row / u_grid, y = row - layer * u_grid;
+        for (int x = 0; x < u_grid; ++x) {
+            const ivec3 t = ivec3(x, y, layer);
+            Vpl v;
+            v.position = texelFetch(s_vplPosition, t, 0);
+            if (v.position.w < 0.5) continue;
+            v.normal = texelFetch(s_vplNormal, t, 0);
+            v.flux = texelFetch(s_vplFlux, t, 0);
+            irradiance += vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
+        }
     }
     o_radiance = vec4((1.0 - s.metallic) * s.albedo / 3.14159265358979 * irradiance, 1.0);
 }
