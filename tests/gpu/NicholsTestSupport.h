@@ -47,7 +47,7 @@ inline Image renderIndirect(const Scene& scene, const std::string& technique,
 // full gather over a 1024^2 RSM" (every texel a VPL, about a million for a spot light's single map);
 // `rsm` renders that limit exactly (batched gather), but it takes about 2 minutes at 64^2 on llvmpipe
 // (2 shared cores; docs/techniques/rsm.md), over the GPU suite's whole budget. 256^2 (65,536 VPLs,
-// about 7 s at 64^2) is the largest that fits; it is within LIMIT_GAP relative RMS of the 1M-VPL
+// about 7 s at 64^2) is the largest that fits; it is within 5.9 % relative RMS of the 1M-VPL
 // gather at 64^2 (measured, rsm.md), far below the techniques' own errors that the tests bound.
 constexpr int kLimitRsmSize = 256;
 
