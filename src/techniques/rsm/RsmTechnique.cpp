@@ -6,8 +6,10 @@
 // flux; (3) "gather" — full-screen passes in which every pixel sums every VPL (Eq. 3.2 or Eq. 4.1), no
 // indirect visibility, radiance = rho / pi * irradiance. The VPLs are gathered in batches of vplBatch,
 // one draw per batch, added by blending: the sum is linear in the VPLs, so the batched image is the
-// one-pass image up to float rounding, and no single draw of the million-VPL limit (rsmSize = vplGrid
-// = 1024) runs for seconds (a long draw stalls the driver and, on a desktop GPU, trips the watchdog).
+// one-pass image up to float rounding, and the million-VPL limit (rsmSize = vplGrid = 1024) is 16 draws
+// of bounded length instead of one draw of minutes on llvmpipe (on a desktop GPU a long draw trips the
+// driver's watchdog). The gather reads the VPL cache as textures in row/column loops (RegularVpls):
+// on llvmpipe that is about twice as fast as indexing the SSBO (docs/techniques/rsm.md).
 //
 // Deviations: the thesis's RSM assumes a spot light and equal texel solid angles (Eq. 4.4); here each
 // texel's exact solid angle and the light's actual intensity give the flux in watts, so the
