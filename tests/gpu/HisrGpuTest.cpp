@@ -30,13 +30,14 @@ TEST_F(HisrGpuTest, DefaultsStayCloseToTheEveryTexelGather) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
     constexpr int kSize = 64;
-    const Image limit = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "128"}}, kSize);
+    const Image& limit = convergedLimit("cornell-box", kSize);
     const Image hisr = renderIndirect(*scene, "hisr", {{"rsmSize", "128"}}, kSize);
     const double error = relativeRmsError(hisr, limit);
     RecordProperty("hisrRelRms", std::to_string(error));
-    // Thesis R6: 5-6 % RMS at 1024^2. Measured here 12.4 % (64^2 image: the coarse eye levels cover
-    // more of the screen; tau and maxDepth are this implementation's defaults).
-    EXPECT_LT(error, 0.15);
+    // Thesis R6: 5-6 % RMS at 1024^2. Measured here 14.9 % against the 256^2 every-texel limit (64^2
+    // image: the coarse eye levels cover more of the screen; a 128^2 RSM alone is 5.5 % off the limit;
+    // tau and maxDepth are this implementation's defaults). Bound: measured plus ~20 %.
+    EXPECT_LT(error, 0.18);
 }
 
 TEST_F(HisrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {

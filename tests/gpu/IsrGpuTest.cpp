@@ -76,7 +76,7 @@ TEST_F(IsrGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
     constexpr int kSize = 64;
-    const Image limit = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "128"}}, kSize);
+    const Image& limit = convergedLimit("cornell-box", kSize);
     // Eye-space clustering alone (same VPLs as a 32^2 regular grid).
     const Image regular = renderIndirect(*scene, "isr", {{"rsmSize", "128"}, {"vplMode", "regular"}, {"vplGrid", "32"}}, kSize);
     const Image rsm32 = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "32"}}, kSize);
@@ -87,10 +87,12 @@ TEST_F(IsrGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     RecordProperty("eyeClusteringRelRms", std::to_string(eyeOnly));
     RecordProperty("combinedRelRms", std::to_string(combined));
     // Thesis R6: 2-3 % RMS from eye-space clustering, 5-6 % combined (1024^2 image, 1024^2 RSM). Measured
-    // here (64^2 image, 128^2 RSM limit): 3.0 % and 10.3 %; at 64^2 the 16^2 coarsest level covers 16x
-    // more of the image than at 1024^2, so the combined bound is wider than the thesis's figure.
+    // here (64^2 image): eye clustering 3.0 % (against the same 1024 VPLs); clusters over a 128^2 RSM
+    // against the 256^2 every-texel limit 13.0 %, of which 5.5 % is the RSM resolution alone (rsm test);
+    // at 64^2 the 16^2 coarsest level covers 16x more of the image than at 1024^2, so the combined bound
+    // is wider than the thesis's figure. Bounds: measured plus ~20-60 % for other drivers.
     EXPECT_LT(eyeOnly, 0.05);
-    EXPECT_LT(combined, 0.15);
+    EXPECT_LT(combined, 0.16);
 }
 
 TEST_F(IsrGpuTest, EnergyDoesNotGrowWithRefinementDepth) {

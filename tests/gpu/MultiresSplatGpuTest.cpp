@@ -33,12 +33,13 @@ TEST_F(MultiresSplatGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
     constexpr int kSize = 64;
-    const Image limit = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "128"}}, kSize);
+    const Image& limit = convergedLimit("cornell-box", kSize);
     const Image splat = renderIndirect(*scene, "multires-splat", {{"rsmSize", "128"}, {"vplGrid", "32"}}, kSize);
     const double error = relativeRmsError(splat, limit);
     RecordProperty("multiresSplatRelRms", std::to_string(error));
-    // 1024 regular VPLs (the rsm gather alone is 10.8 % off at 32^2) plus eye clustering and Eq. 3.2's
-    // r^2 clamp instead of the disk form factor of the limit.
+    // Measured 14.8 % against the 256^2 every-texel limit at 64^2: 1024 regular VPLs over a 128^2 RSM
+    // (the rsm gather alone is 16.7 % off), eye clustering and Eq. 3.2's r^2 clamp instead of the disk
+    // form factor of the limit.
     EXPECT_LT(error, 0.20);
 }
 

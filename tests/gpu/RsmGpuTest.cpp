@@ -1,6 +1,6 @@
 // The shared reflective shadow map and the `rsm` baseline gather (Nichols 2010 §3.2.1, §4.3):
 // closed-form RSM fluxes for spot, point and directional lights over a grey plane, flux-preserving
-// VPL extraction, and the gather's convergence towards the every-texel ("million-VPL") limit.
+// VPL extraction, the batched gather, and the gather's convergence towards the every-texel limit.
 #include "GpuTestSupport.h"
 #include "NicholsTestSupport.h"
 #include "techniques/rsm/RsmTechnique.h"
@@ -81,23 +81,49 @@ TEST_F(RsmGpuTest, FlatPlaneReceivesNoIndirectLightFromItself) {
     EXPECT_LT(totalRadiance(indirect), 1e-6);
 }
 
-TEST_F(RsmGpuTest, GatherConvergesToTheEveryTexelLimit) {
+TEST_F(RsmGpuTest, BatchedGatherEqualsTheOnePassGather) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
     constexpr int kSize = 32;
-    // The converged limit: every texel of a 128^2 RSM is a VPL (16k VPLs; the thesis's 1M-VPL
-    // reference uses 1024^2, too slow for a test on llvmpipe).
-    const Image limit = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "128"}}, kSize);
+    // 64^2 = 4096 VPLs: one draw, or batches of 1000 (five draws, the last one partial).
+    const std::map<std::string, std::string> vpls = {{"rsmSize", "64"}, {"vplGrid", "64"}};
+    auto one = makePipeline(*scene, "rsm", vpls, kSize);
+    auto settings = vpls;
+    settings["vplBatch"] = "1000";
+    auto batched = makePipeline(*scene, "rsm", settings, kSize);
+    EXPECT_EQ(one->renderFrame(0).counters.at("gatherDraws"), 1.0);
+    EXPECT_EQ(batched->renderFrame(0).counters.at("gatherDraws"), 5.0);
+    const Image a = one->readback(Component::Indirect), b = batched->readback(Component::Indirect);
+    ASSERT_GT(totalRadiance(a), 0.0);
+    // The same terms, summed per batch and then added by blending: float rounding only (4096 terms of
+    // one sign, relative rounding ~1e-7 each).
+    EXPECT_LT(relativeRmsError(b, a), 1e-5);
+}
+
+TEST_F(RsmGpuTest, GatherConvergesToTheEveryTexelLimit) {
+    constexpr int kSize = 64;
+    // The converged limit: every texel of a kLimitRsmSize^2 RSM is a VPL (the cornell-box spot's single
+    // 120-degree map; NicholsTestSupport.h says why not the thesis's 1024^2).
+    const Image& limit = convergedLimit("cornell-box", kSize);
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
     const Image coarse = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "8"}}, kSize);
     const Image fine = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "32"}}, kSize);
+    const Image everyTexel = renderIndirect(*scene, "rsm", {{"rsmSize", "128"}, {"vplGrid", "128"}}, kSize);
     ASSERT_GT(totalRadiance(limit), 0.0);
     const double coarseError = relativeRmsError(coarse, limit), fineError = relativeRmsError(fine, limit);
+    const double texelError = relativeRmsError(everyTexel, limit);
     RecordProperty("coarseRelRms", std::to_string(coarseError));
     RecordProperty("fineRelRms", std::to_string(fineError));
-    // More VPLs approach the limit (measured on llvmpipe: 64 VPLs 31 %, 1024 VPLs 10.8 % relative RMS at
-    // 32^2; a regular VPL sits at its block's centre texel, which errs most in the box's corners).
+    RecordProperty("everyTexel128RelRms", std::to_string(texelError));
+    // More VPLs approach the limit: a regular VPL sits at its block's centre texel, which errs most in
+    // the box's corners. Measured on llvmpipe at 64^2: 64 VPLs 36.3 %, 1024 VPLs 16.7 %, every texel of
+    // a 128^2 RSM (16k VPLs) 5.5 % (the RSM resolution alone: texels of 128^2 vs 256^2 in the corners).
+    // Bounds: the measured values plus about 20 % for other drivers' rounding and rasterisation rules.
     EXPECT_LT(fineError, coarseError);
-    EXPECT_LT(fineError, 0.15);
+    EXPECT_LT(texelError, fineError);
+    EXPECT_LT(fineError, 0.20);
+    EXPECT_LT(texelError, 0.07);
     // The gather preserves energy: the totals agree within 5 % (regular sampling, not the flux).
     EXPECT_NEAR(totalRadiance(fine) / totalRadiance(limit), 1.0, 0.05);
 }

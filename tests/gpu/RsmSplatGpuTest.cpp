@@ -1,4 +1,5 @@
-// `rsm-splat` (Nichols 2010 §4.3, Fig. 4.8 baselines): full-screen splats equal the rsm gather,
+// `rsm-splat` (Nichols 2010 §4.3, Fig. 4.8 baselines): full-screen splats equal the rsm gather and stay
+// close to the converged every-texel gather,
 // radius-limited splats only remove light (§2.10.1: they darken), the matched radius converges to the
 // target fragments per splat, and every built-in scene renders.
 #include "GpuTestSupport.h"
@@ -20,6 +21,19 @@ TEST_F(RsmSplatGpuTest, FullScreenSplatsEqualTheGather) {
     ASSERT_GT(totalRadiance(gather), 0.0);
     // Same terms summed in a different order (blending vs a loop): float rounding only.
     EXPECT_LT(relativeRmsError(splat, gather), 1e-5);
+}
+
+TEST_F(RsmSplatGpuTest, FullScreenSplatsAreCloseToTheEveryTexelGather) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 64;
+    const Image& limit = convergedLimit("cornell-box", kSize);
+    const Image splat = renderIndirect(*scene, "rsm-splat", {{"rsmSize", "128"}, {"vplGrid", "32"}}, kSize);
+    const double error = relativeRmsError(splat, limit);
+    RecordProperty("rsmSplatRelRms", std::to_string(error));
+    // Full-screen splats are the rsm gather of the same 1024 VPLs (test above), so the error is the
+    // regular VPL grid's and the 128^2 RSM's: measured 16.7 % at 64^2 (as rsm's); bound with ~20 % margin.
+    EXPECT_LT(error, 0.20);
 }
 
 TEST_F(RsmSplatGpuTest, LimitedRadiusOnlyDarkens) {

@@ -3,13 +3,17 @@
 // (or, if that texel saw nothing, the first covered texel in scan order), carrying the summed flux and
 // area of the whole block, so the VPL set reflects exactly the power of the RSM.
 // Host uniforms: u_grid (VPLs per side), u_block (texels per block side).
-// Inputs: RSM position/normal/flux arrays (BINDING_TEX_TECH0..2). Output: Vpl[] (BINDING_SSBO_TECH0).
+// Inputs: RSM position/normal/flux arrays (BINDING_TEX_TECH0..2). Outputs: Vpl[] (BINDING_SSBO_TECH0)
+// and the same records as grid^2 x layers images (BINDING_IMG0..2: position, normal, flux).
 #include "techniques/nichols/vpl.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_rsmPosition;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_rsmNormal;
 layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_rsmFlux;
 layout(std430, binding = BINDING_SSBO_TECH0) writeonly buffer VplBlock { Vpl u_vpls[]; };
+layout(rgba32f, binding = BINDING_IMG0) writeonly uniform image2DArray i_position;
+layout(rgba32f, binding = BINDING_IMG1) writeonly uniform image2DArray i_normal;
+layout(rgba32f, binding = BINDING_IMG2) writeonly uniform image2DArray i_flux;
 uniform int u_grid;
 uniform int u_block;
 
@@ -38,4 +42,7 @@ void main() {
     v.normal = vec4(texelFetch(s_rsmNormal, rep, 0).xyz, area);
     v.flux = vec4(flux, float(u_block * u_block));
     u_vpls[(cell.z * u_grid + cell.y) * u_grid + cell.x] = v;
+    imageStore(i_position, cell, v.position);
+    imageStore(i_normal, cell, v.normal);
+    imageStore(i_flux, cell, v.flux);
 }

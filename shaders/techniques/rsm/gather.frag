@@ -5,14 +5,23 @@
 // u_glossy (bounce's extension, the limit of multires-splat's mode A): the receiver's full BRDF,
 // L_indirect += sum_j f_spec(l_j, e) E_j with f_spec the GGX lobe of common/brdf.glsl
 // (rsm/glossy.glsl); the thesis's gather is Lambertian.
-// Host uniforms: u_vplCount, u_diskForm, u_minDistance2 (m^2), u_glossy. Inputs: G-buffer, u_frame,
-// Vpl[] (BINDING_SSBO_TECH0). Output: indirect radiance W/(m^2 sr), RGBA32F.
+// One draw sums the VPL rows [u_rowFirst, u_rowEnd) of the cache (row r = layer * grid + y, grid VPLs
+// each); the host adds the batches by blending (RsmTechnique.cpp). The cache is read as textures in
+// nested loops: on llvmpipe an SSBO index or an integer division per VPL costs more than the VPL's
+// arithmetic (measured in docs/techniques/rsm.md).
+// Host uniforms: u_rowFirst, u_rowEnd, u_grid, u_diskForm, u_minDistance2 (m^2), u_glossy.
+// Inputs: G-buffer, u_frame, VPL cache textures (BINDING_TEX_TECH0..2: position, normal, flux;
+// vpl.glsl's fields). Output: indirect radiance W/(m^2 sr), RGBA32F.
 #include "common/gbuffer.glsl"
 #include "common/frame.glsl"
 #include "techniques/rsm/glossy.glsl"
 #include "techniques/nichols/vpl.glsl"
-layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
-uniform int u_vplCount;
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_vplPosition;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_vplNormal;
+layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_vplFlux;
+uniform int u_rowFirst;
+uniform int u_rowEnd;
+uniform int u_grid;
 uniform bool u_diskForm;
 uniform float u_minDistance2;
 uniform bool u_glossy;
@@ -26,14 +35,21 @@ void main() {
     }
     vec3 e = normalize(u_frame.eyePosition.xyz - s.position);
     vec3 irradiance = vec3(0.0), glossy = vec3(0.0);
-    for (int j = 0; j < u_vplCount; ++j) {
-        Vpl v = u_vpls[j];
-        if (v.position.w < 0.5) continue;
-        vec3 ej = vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
-        irradiance += ej;
-        if (u_glossy)
-            glossy += glossyBrdf(s.normal, normalize(v.position.xyz - s.position), e, s.albedo, s.roughness, s.metallic,
-                                 s.specularF0) * ej;
+    for (int row = u_rowFirst; row < u_rowEnd; ++row) {
+        const int layer = row / u_grid, y = row - layer * u_grid;
+        for (int x = 0; x < u_grid; ++x) {
+            const ivec3 t = ivec3(x, y, layer);
+            Vpl v;
+            v.position = texelFetch(s_vplPosition, t, 0);
+            if (v.position.w < 0.5) continue;
+            v.normal = texelFetch(s_vplNormal, t, 0);
+            v.flux = texelFetch(s_vplFlux, t, 0);
+            vec3 ej = vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
+            irradiance += ej;
+            if (u_glossy)
+                glossy += glossyBrdf(s.normal, normalize(v.position.xyz - s.position), e, s.albedo, s.roughness,
+                                     s.metallic, s.specularF0) * ej;
+        }
     }
     o_radiance = vec4((1.0 - s.metallic) * s.albedo * kInvPi * irradiance + glossy, 1.0);
 }

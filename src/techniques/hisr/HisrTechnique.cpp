@@ -5,7 +5,8 @@
 // per node, techniques/nichols/MinMaxPyramid), "min-max-mipmap" (eye space), "stencil-setup",
 // "gather" (per fragment: traversal of the tree from the 16^2 roots with Eq. 4.8, at most maxDepth
 // levels down, disk-to-point form factor per accepted node), "upsample" (§3.2.5, then x albedo/pi).
-// Counters: fragments per level, tree nodes visited per gathered fragment.
+// Counters: fragments per level, tree nodes visited per gathered fragment. The eye-space passes are
+// techniques/nichols/StencilledGather, shared with isr.
 //
 // Deviations (docs/techniques/hisr.md): the tree is the RSM's mip chain itself (a 2D-array mipmap),
 // not the Haar-like cache-coherent re-layout of §4.2.4; Eq. 4.8 uses I = 1 (normalised light) and the
@@ -15,8 +16,6 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
-
-#include <fmt/format.h>
 
 #include <numeric>
 
@@ -37,13 +36,11 @@ Expected<void> HisrTechnique::setup(const SetupContext&) {
     if ((m_rsmSize & (m_rsmSize - 1)) != 0) return makeError("setting rsmSize={} is not a power of two", m_rsmSize);
     if (m_rootGrid > m_rsmSize) return makeError("setting rootGrid={} exceeds rsmSize={}", m_rootGrid, m_rsmSize);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
-    BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
-    BOUNCE_TRY(m_buffer, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
     BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                              {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}}}));
     m_nodes = gl::Buffer::create("hisr.nodesVisited", sizeof(uint32_t));
-    m_clearFbo = gl::Framebuffer::create("hisr.clear");
     return {};
 }
 
@@ -51,9 +48,7 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
     {
         auto s = ctx.timers.scope("rsm");
         if (!m_rsm->render(ctx, m_rsmSize)) {
-            const float zero[4] = {0, 0, 0, 0};
-            m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
-            glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);
+            m_eye->clear(indirect);
             return;
         }
     }
@@ -62,20 +57,10 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         // Flags are not used by the traversal; the thresholds only shape the (unused) refine chain.
         m_light->buildLight(*m_rsm, m_rootGrid, nichols::PyramidThresholds{});
     }
-    {
-        auto s = ctx.timers.scope("min-max-mipmap");
-        m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_eyeThresholds);
-    }
-    {
-        auto s = ctx.timers.scope("stencil-setup");
-        m_buffer->begin(*m_eye);
-        m_buffer->stencilSetup(*m_eye);
-    }
+    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
     std::vector<double> fragments;
     {
         auto s = ctx.timers.scope("gather");
-        m_eye->geometry().bind(BINDING_TEX_TECH0);
-        m_eye->normal().bind(BINDING_TEX_TECH1);
         m_light->geometry().bind(BINDING_TEX_INPUT0);
         m_light->normal().bind(BINDING_TEX_INPUT1);
         m_light->normalMax().bind(BINDING_TEX_INPUT2);
@@ -86,19 +71,13 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_gather.set("u_maxDepth", m_maxDepth);
         m_gather.set("u_tau", m_tau);
         m_gather.set("u_layers", m_light->layers());
-        fragments = m_buffer->drawStencilled(m_gather);
+        fragments = m_eye->gather(m_gather);
     }
-    {
-        auto s = ctx.timers.scope("upsample");
-        m_buffer->upsample();
-        m_buffer->combine(ctx.gbuffer, indirect);
-    }
+    m_eye->finish(ctx, indirect, fragments);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t nodes = 0;
     m_nodes.download(0, sizeof(nodes), &nodes);
     const double total = std::accumulate(fragments.begin(), fragments.end(), 0.0);
-    for (size_t k = 0; k < fragments.size(); ++k) ctx.counters[fmt::format("fragments/level-{}", k)] = fragments[k];
-    ctx.counters["gatherFragments"] = total;
     ctx.counters["nodesPerFragment"] = total > 0.0 ? nodes / total : 0.0;
 }
 

@@ -3,7 +3,7 @@
 // (min-max mipmaps, stencil set-up over the flattened atlas, upsampling) with a per-fragment
 // traversal of a per-frame VPL tree built over the RSM (threshold tau, maximum depth 1-3).
 #include "techniques/Technique.h"
-#include "techniques/nichols/MultiresBuffer.h"
+#include "techniques/nichols/StencilledGather.h"
 
 #include <optional>
 
@@ -16,7 +16,7 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
 
-    const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
+    const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
 
 private:
     int m_rsmSize = 256;       // §4.2.1.2
@@ -26,11 +26,10 @@ private:
     int m_eyeCoarsest = 16;
     nichols::PyramidThresholds m_eyeThresholds{0.1f, 0.3f, false};
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
-    std::optional<nichols::MinMaxPyramid> m_eye, m_light;
-    std::optional<nichols::MultiresBuffer> m_buffer;
+    std::optional<nichols::MinMaxPyramid> m_light;
+    std::optional<nichols::StencilledGather> m_eye;
     gl::Program m_gather;
     gl::Buffer m_nodes;
-    gl::Framebuffer m_clearFbo;
 };
 
 }  // namespace bounce

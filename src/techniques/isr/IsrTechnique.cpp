@@ -12,6 +12,8 @@
 //   "gather"          Stenciled Gathering: every marked atlas texel gathers every VPL (Eqs. 4.1-4.5).
 //   "upsample"        Upsampling: coarse-to-fine empty-aware 3x3 interpolation (§3.2.5), then x albedo/pi.
 // Counters: vpls, fragments per level ("fragments/level-k"), total gather fragments.
+// The eye-space passes (min-max-mipmap, stencil-setup, the stencilled draw, upsample) are
+// techniques/nichols/StencilledGather, shared with hisr; isr adds the RSM, the VPL cache and its gather.
 //
 // Deviations (docs/techniques/isr.md): stencil set-up is one quad per level rectangle of the atlas
 // (same fragments as one full-atlas pass); the thresholds, the atlas layout, the upsampling weights,
@@ -22,10 +24,6 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
-
-#include <fmt/format.h>
-
-#include <numeric>
 
 namespace bounce {
 
@@ -54,14 +52,12 @@ Expected<void> IsrTechnique::setup(const SetupContext&) {
         return makeError("settings need lightCoarsest={} <= lightFinest={} <= rsmSize={}", m_lightCoarsest, m_lightFinest, m_rsmSize);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_regular, nichols::RegularVpls::create());
-    BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
-    BOUNCE_TRY(m_buffer, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
     BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                             {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}}}));
     BOUNCE_TRY(m_clusters, gl::Program::build({"isr.clusters", {{GL_COMPUTE_SHADER, "techniques/isr/clusters.comp"}}}));
     m_count = gl::Buffer::create("isr.vplCount", sizeof(uint32_t));
-    m_clearFbo = gl::Framebuffer::create("isr.clear");
     return {};
 }
 
@@ -69,9 +65,7 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     {
         auto s = ctx.timers.scope("rsm");
         if (!m_rsm->render(ctx, m_rsmSize, m_equalSolidAngle)) {
-            const float zero[4] = {0, 0, 0, 0};
-            m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
-            glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);
+            m_eye->clear(indirect);
             ctx.counters["vpls"] = 0.0;
             return;
         }
@@ -112,32 +106,16 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             vpls = &m_clusterVpls;
         }
     }
-    {
-        auto s = ctx.timers.scope("min-max-mipmap");
-        m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_eyeThresholds);
-    }
-    {
-        auto s = ctx.timers.scope("stencil-setup");
-        m_buffer->begin(*m_eye);
-        m_buffer->stencilSetup(*m_eye);
-    }
+    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
     std::vector<double> fragments;
     {
         auto s = ctx.timers.scope("gather");
-        m_eye->geometry().bind(BINDING_TEX_TECH0);
-        m_eye->normal().bind(BINDING_TEX_TECH1);
         vpls->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
-        fragments = m_buffer->drawStencilled(m_gather);
+        fragments = m_eye->gather(m_gather);
     }
-    {
-        auto s = ctx.timers.scope("upsample");
-        m_buffer->upsample();
-        m_buffer->combine(ctx.gbuffer, indirect);
-    }
+    m_eye->finish(ctx, indirect, fragments);
     ctx.counters["vpls"] = static_cast<double>(m_vplCount);
-    for (size_t k = 0; k < fragments.size(); ++k) ctx.counters[fmt::format("fragments/level-{}", k)] = fragments[k];
-    ctx.counters["gatherFragments"] = std::accumulate(fragments.begin(), fragments.end(), 0.0);
 }
 
 }  // namespace bounce

@@ -4,8 +4,8 @@
 // cache with the disk-to-point form factor, coarse-to-fine upsampling; VPLs either on a regular RSM
 // grid (the stencilled gather of Table 4.1) or as multiresolution light-space clusters (§4.2.2).
 #include "techniques/Technique.h"
-#include "techniques/nichols/MultiresBuffer.h"
 #include "techniques/nichols/RegularVpls.h"
+#include "techniques/nichols/StencilledGather.h"
 
 #include <array>
 #include <optional>
@@ -19,8 +19,8 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
 
-    const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
-    const nichols::MinMaxPyramid& eyePyramid() const { return *m_eye; }
+    const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
+    const nichols::MinMaxPyramid& eyePyramid() const { return m_eye->eye(); }
     int vplCount() const { return m_vplCount; }
 
     static constexpr std::array<std::string_view, 2> kVplModes{"clusters", "regular"};
@@ -37,11 +37,10 @@ private:
     nichols::PyramidThresholds m_lightThresholds{0.1f, 0.3f, false};  // assumptions
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_regular;
-    std::optional<nichols::MinMaxPyramid> m_eye, m_light;
-    std::optional<nichols::MultiresBuffer> m_buffer;
+    std::optional<nichols::MinMaxPyramid> m_light;
+    std::optional<nichols::StencilledGather> m_eye;
     gl::Program m_gather, m_clusters;
     gl::Buffer m_clusterVpls, m_count;
-    gl::Framebuffer m_clearFbo;
     int m_vplCount = 0;
 };
 

@@ -24,6 +24,22 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
     const size_t bytes = static_cast<size_t>(count) * sizeof(VplRecord);
     if (!m_buffer || m_buffer.size() != bytes) m_buffer = gl::Buffer::create("nichols.vplCache", bytes);
     m_count = count;
+    if (grid != m_grid || rsm.layers() != m_layers) {
+        m_grid = grid;
+        m_layers = rsm.layers();
+        gl::TextureDesc d;
+        d.target = GL_TEXTURE_2D_ARRAY;
+        d.width = d.height = grid;
+        d.depth = m_layers;
+        d.format = GL_RGBA32F;
+        d.minFilter = d.magFilter = GL_NEAREST;
+        m_position = gl::Texture::create("nichols.vplCache.position", d);
+        m_normal = gl::Texture::create("nichols.vplCache.normal", d);
+        m_flux = gl::Texture::create("nichols.vplCache.flux", d);
+    }
+    m_position.bindImage(BINDING_IMG0, GL_WRITE_ONLY, 0, true);
+    m_normal.bindImage(BINDING_IMG1, GL_WRITE_ONLY, 0, true);
+    m_flux.bindImage(BINDING_IMG2, GL_WRITE_ONLY, 0, true);
     rsm.position().bind(BINDING_TEX_TECH0);
     rsm.normal().bind(BINDING_TEX_TECH1);
     rsm.flux().bind(BINDING_TEX_TECH2);
@@ -33,7 +49,7 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
     m_program.use();
     const int groups = (grid + kLocalSize - 1) / kLocalSize;
     glDispatchCompute(static_cast<GLuint>(groups), static_cast<GLuint>(groups), static_cast<GLuint>(rsm.layers()));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
 }
 
 std::vector<VplRecord> RegularVpls::download() const {

@@ -21,13 +21,22 @@ public:
     void extract(const ReflectiveShadowMap& rsm, int grid);
 
     int count() const { return m_count; }
+    int grid() const { return m_grid; }
+    int layers() const { return m_layers; }
     const gl::Buffer& buffer() const { return m_buffer; }
+    // The same records as grid x grid x layers RGBA32F 2D arrays (position, normal, flux; texel
+    // (x, y, layer) = record (layer * grid + y) * grid + x): a gather that walks them with texelFetch in
+    // nested loops runs about twice as fast on llvmpipe as one indexing the SSBO (measured, see rsm.md).
+    const gl::Texture& positionTexture() const { return m_position; }
+    const gl::Texture& normalTexture() const { return m_normal; }
+    const gl::Texture& fluxTexture() const { return m_flux; }
     std::vector<VplRecord> download() const;
 
 private:
     gl::Program m_program;
     gl::Buffer m_buffer;
-    int m_count = 0;
+    gl::Texture m_position, m_normal, m_flux;
+    int m_count = 0, m_grid = 0, m_layers = 0;
 };
 
 }  // namespace bounce::nichols

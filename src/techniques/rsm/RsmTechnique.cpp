@@ -3,10 +3,15 @@
 // Passes: (1) "Generate Reflective Shadow Map" — the RSM of light 0 (techniques/nichols/
 // ReflectiveShadowMap: spot perspective, point/area/wide spot cube, directional orthographic);
 // (2) "VPL cache" — a regular vplGrid^2 grid of VPLs per RSM layer, each carrying its block's summed
-// flux; (3) "gather" — a full-screen pass in which every pixel sums every VPL (Eq. 3.2 or Eq. 4.1), no
-// indirect visibility, radiance = rho / pi * irradiance. With `glossy` on (bounce's extension, off by
-// default), the GGX lobe of the receiver's BRDF toward the eye is added per VPL: the limit of
-// multires-splat's mode A.
+// flux; (3) "gather" — full-screen passes in which every pixel sums every VPL (Eq. 3.2 or Eq. 4.1), no
+// indirect visibility, radiance = rho / pi * irradiance. The VPLs are gathered in batches of vplBatch,
+// one draw per batch, added by blending: the sum is linear in the VPLs, so the batched image is the
+// one-pass image up to float rounding, and the million-VPL limit (rsmSize = vplGrid = 1024) is 16 draws
+// of bounded length instead of one draw of minutes on llvmpipe (on a desktop GPU a long draw trips the
+// driver's watchdog). The gather reads the VPL cache as textures in row/column loops (RegularVpls):
+// on llvmpipe that is about twice as fast as indexing the SSBO (docs/techniques/rsm.md).
+// With `glossy` on (bounce's extension, off by default), the GGX lobe of the receiver's BRDF toward
+// the eye is added per VPL: the limit of multires-splat's mode A.
 //
 // Deviations: the thesis's RSM assumes a spot light and equal texel solid angles (Eq. 4.4); here each
 // texel's exact solid angle and the light's actual intensity give the flux in watts, so the
@@ -19,6 +24,8 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 
+#include <algorithm>
+
 namespace bounce {
 
 void RsmTechnique::visitSettings(SettingsVisitor& v) {
@@ -29,6 +36,7 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("minDistance", m_minDistance, "r clamp of the point form factor, metres (assumption; the thesis gives no value)", 0.0f, 10.0f);
     v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
             "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
+    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, rounded down to whole VPL-grid rows (at least one); batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
 }
 
 Expected<void> RsmTechnique::setup(const SetupContext&) {
@@ -63,17 +71,36 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     m_fbo.bind();
     glViewport(0, 0, ctx.size.x, ctx.size.y);
     glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
     ctx.gbuffer.bind();
-    m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
-    m_gather.set("u_vplCount", m_vpls->count());
+    m_vpls->positionTexture().bind(BINDING_TEX_TECH0);
+    m_vpls->normalTexture().bind(BINDING_TEX_TECH1);
+    m_vpls->fluxTexture().bind(BINDING_TEX_TECH2);
+    m_gather.set("u_grid", m_vpls->grid());
     m_gather.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
     m_gather.set("u_minDistance2", m_minDistance * m_minDistance);
     m_gather.set("u_glossy", m_glossy ? 1 : 0);
-    m_gather.use();
     gl::Context::current()->bindEmptyVertexArray();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    // A batch is whole rows of the VPL grid (at least one), so the shader walks rows without an integer
+    // division per VPL. The first batch writes (also clearing pixels without geometry), the others add.
+    const int rows = m_vpls->grid() * m_vpls->layers();
+    const int rowsPerBatch = std::max(1, m_vplBatch / m_vpls->grid());
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    int draws = 0;
+    for (int first = 0; first < rows; first += rowsPerBatch, ++draws) {
+        if (first > 0) glEnable(GL_BLEND);
+        m_gather.set("u_rowFirst", first);
+        m_gather.set("u_rowEnd", std::min(first + rowsPerBatch, rows));
+        m_gather.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        // llvmpipe queues a frame's draws before rasterising; a flush per batch makes each batch a
+        // separate unit of work (as a GPU's per-submission watchdog would need).
+        glFlush();
+    }
+    glDisable(GL_BLEND);
+    ctx.counters["gatherDraws"] = static_cast<double>(draws);
     ctx.counters["vpls"] = static_cast<double>(m_vpls->count());
     ctx.counters["gatherFragments"] = static_cast<double>(ctx.size.x) * ctx.size.y;
 }

@@ -1,0 +1,40 @@
+#pragma once
+// The eye-space half of isr and hisr (Nichols 2010 §4.2.1, Table 4.1's "Create Min-Max Mipmap",
+// "Multires Stencil Setup", "Stenciled Gathering" and "Upsampling" rows): the min-max pyramid over the
+// camera G-buffer, the flattened multiresolution buffer with its one-pass stencil set-up, the
+// stencilled per-level draw of a technique's gather program, and the coarse-to-fine upsampling into
+// the indirect target. The techniques differ only in what their gather program reads (a VPL cache or
+// a VPL tree), which they bind before gather().
+#include "techniques/nichols/MultiresBuffer.h"
+
+#include <optional>
+
+namespace bounce::nichols {
+
+class StencilledGather {
+public:
+    static Expected<StencilledGather> create();
+
+    // Timers "min-max-mipmap" and "stencil-setup": builds the eye pyramid down to eyeCoarsest and
+    // marks each covered pixel at exactly one level of the buffer.
+    void prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds);
+    // Draws `program` over the stencilled cells of every level, with the eye pyramid's geometry and
+    // normal bound at BINDING_TEX_TECH0/1 (the patch each cell gathers for). The caller opens the
+    // "gather" timer and binds its light data first. Returns the fragments shaded per level.
+    std::vector<double> gather(gl::Program& program);
+    // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance; sets the
+    // counters "fragments/level-k" and "gatherFragments" from gather()'s result.
+    void finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments);
+    // Writes zero indirect light (a scene without lights).
+    void clear(const gl::Texture& indirect);
+
+    const MinMaxPyramid& eye() const { return *m_eye; }
+    const MultiresBuffer& buffer() const { return *m_buffer; }
+
+private:
+    std::optional<MinMaxPyramid> m_eye;
+    std::optional<MultiresBuffer> m_buffer;
+    gl::Framebuffer m_clearFbo;
+};
+
+}  // namespace bounce::nichols
