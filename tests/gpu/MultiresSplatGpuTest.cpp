@@ -62,6 +62,32 @@ TEST_F(MultiresSplatGpuTest, DetailModulationScalesBetweenOneMinusAlphaAndOne) {
     EXPECT_LT(totalRadiance(on), totalRadiance(off));
 }
 
+TEST_F(MultiresSplatGpuTest, EnergyDoesNotGrowWithRefinementDepth) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 64;
+    const std::map<std::string, std::string> common = {{"rsmSize", "64"}, {"vplGrid", "16"}};
+    // Measured: 510.93 (one level), 510.88 (coarsest 32), 510.98 (coarsest 16): 0.01 %.
+    constexpr double kEnergyTolerance = 0.01;
+    double fullResolution = 0.0;
+    for (int coarsest : {64, 32, 16}) {
+        auto settings = common;
+        settings["eyeCoarsest"] = std::to_string(coarsest);
+        const double energy = totalRadiance(renderIndirect(*scene, "multires-splat", settings, kSize));
+        RecordProperty("energyCoarsest" + std::to_string(coarsest), std::to_string(energy));
+        if (coarsest == kSize) {
+            fullResolution = energy;  // one level: every pixel is splatted at full resolution
+            ASSERT_GT(energy, 0.0);
+            continue;
+        }
+        // Coarse splats are shaded at their patch's mean position and normal, then spread by the
+        // empty-aware upsampling, which only redistributes: 1 % allows for the patch's irradiance
+        // differing from the mean of its pixels' on curved or creased regions.
+        EXPECT_LE(energy, fullResolution * (1.0 + kEnergyTolerance)) << "coarsest " << coarsest;
+        EXPECT_GE(energy, fullResolution * (1.0 - kEnergyTolerance)) << "coarsest " << coarsest;
+    }
+}
+
 TEST_F(MultiresSplatGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);

@@ -6,7 +6,10 @@
 // below the roots, and gathers each accepted node as a VPL (mean position and normal, summed flux and
 // area) with the disk-to-point form factor (Eqs. 4.1, 4.5). The light intensity I of Eq. 4.8 is taken
 // as 1 (the thesis's normalised colours) and res_l is the node's level resolution (its solid angle).
-// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers.
+// One draw walks the roots [u_rootFirst, u_rootEnd) (index = (layer * roots.y + y) * roots.x + x); the
+// host adds the draws (blending) so that no invocation loops past the shader loop budget
+// (gpu/ShaderLimits.h) however deep the trees.
+// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers, u_rootFirst, u_rootEnd.
 // Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), light pyramid geometry/normal/normalMax/flux
 // (BINDING_TEX_INPUT0..3). Outputs: atlas irradiance (alpha 1); u_nodes counts visited nodes.
 #include "techniques/nichols/atlas.glsl"
@@ -22,6 +25,8 @@ uniform int u_rootLevel;
 uniform int u_maxDepth;
 uniform float u_tau;
 uniform int u_layers;
+uniform int u_rootFirst;
+uniform int u_rootEnd;
 layout(location = 0) out vec4 o_irradiance;
 
 vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n) {
@@ -46,38 +51,39 @@ void main() {
     int finest = max(u_rootLevel - u_maxDepth, 0);
     // Stackless depth-first walk of each root's quadtree (RSM sizes are powers of two): descend to the
     // first child on refinement, otherwise move to the next sibling, climbing while on a last child.
-    for (int layer = 0; layer < u_layers; ++layer)
-        for (int ry = 0; ry < roots.y; ++ry)
-            for (int rx = 0; rx < roots.x; ++rx) {
-                ivec2 cellXY = ivec2(rx, ry);
-                int level = u_rootLevel;
-                while (true) {
-                    ivec3 node = ivec3(cellXY, layer);
-                    ++visited;
-                    vec4 ng = texelFetch(s_lightGeometry, node, level);
-                    bool refine = false;
-                    if (ng.w > 0.0 && level > finest) {
-                        float res = float(textureSize(s_lightGeometry, level).x);
-                        float t = 2.0 * (1.0 - u_tau) / (3.0 * u_tau * res * res);
-                        float lightDistance = texelFetch(s_lightNormalMax, node, level).w;
-                        vec3 d = ng.xyz / ng.w - x;
-                        refine = dot(d, d) <= t * lightDistance * lightDistance;
-                    }
-                    if (refine) {
-                        cellXY *= 2;
-                        level -= 1;
-                        continue;
-                    }
-                    if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n);
-                    while (level < u_rootLevel && (cellXY.x & 1) == 1 && (cellXY.y & 1) == 1) {
-                        cellXY /= 2;
-                        level += 1;
-                    }
-                    if (level == u_rootLevel) break;
-                    if ((cellXY.x & 1) == 0) cellXY.x += 1;
-                    else cellXY += ivec2(-1, 1);
-                }
+    int rootEnd = min(u_rootEnd, u_layers * roots.x * roots.y);
+    for (int root = u_rootFirst; root < rootEnd; ++root) {
+        int layer = root / (roots.x * roots.y), rest = root - layer * roots.x * roots.y;
+        int ry = rest / roots.x, rx = rest - ry * roots.x;
+        ivec2 cellXY = ivec2(rx, ry);
+        int level = u_rootLevel;
+        while (true) {
+            ivec3 node = ivec3(cellXY, layer);
+            ++visited;
+            vec4 ng = texelFetch(s_lightGeometry, node, level);
+            bool refine = false;
+            if (ng.w > 0.0 && level > finest) {
+                float res = float(textureSize(s_lightGeometry, level).x);
+                float t = 2.0 * (1.0 - u_tau) / (3.0 * u_tau * res * res);
+                float lightDistance = texelFetch(s_lightNormalMax, node, level).w;
+                vec3 d = ng.xyz / ng.w - x;
+                refine = dot(d, d) <= t * lightDistance * lightDistance;
             }
+            if (refine) {
+                cellXY *= 2;
+                level -= 1;
+                continue;
+            }
+            if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n);
+            while (level < u_rootLevel && (cellXY.x & 1) == 1 && (cellXY.y & 1) == 1) {
+                cellXY /= 2;
+                level += 1;
+            }
+            if (level == u_rootLevel) break;
+            if ((cellXY.x & 1) == 0) cellXY.x += 1;
+            else cellXY += ivec2(-1, 1);
+        }
+    }
     atomicAdd(u_nodes, visited);
     o_irradiance = vec4(irradiance, 1.0);
 }

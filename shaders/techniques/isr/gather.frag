@@ -6,7 +6,9 @@
 // where Phi_j = rho_j I omega_j (Eqs. 4.2-4.4 with the exact texel solid angle). The atlas stores the
 // irradiance E_i (W/m^2, alpha 1 = rendered here); the pixel's own albedo multiplies it at the end,
 // which keeps texture detail under coarse patches.
-// Host uniforms: u_level, u_levelOrigin. Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), Vpl[] and
+// One draw sums the VPLs [u_vplFirst, min(u_vplEnd, count)); the host adds the draws (blending) so that
+// no invocation loops past the shader loop budget (gpu/ShaderLimits.h).
+// Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd. Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), Vpl[] and
 // the VPL count (BINDING_SSBO_TECH0, TECH1). Output: atlas RGBA32F.
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
@@ -14,6 +16,8 @@ layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
 layout(std430, binding = BINDING_SSBO_TECH1) readonly buffer VplCountBlock { uint u_vplCount; };
+uniform uint u_vplFirst;
+uniform uint u_vplEnd;
 layout(location = 0) out vec4 o_irradiance;
 
 void main() {
@@ -22,7 +26,8 @@ void main() {
     vec3 x = g.xyz / g.w;
     vec3 n = normalize(texelFetch(s_normal, cell, u_level).xyz + vec3(0.0, 0.0, 1e-12));
     vec3 irradiance = vec3(0.0);
-    for (uint j = 0u; j < u_vplCount; ++j) {
+    uint end = min(u_vplEnd, u_vplCount);
+    for (uint j = u_vplFirst; j < end; ++j) {
         Vpl v = u_vpls[j];
         if (v.position.w < 0.5) continue;
         irradiance += vplIrradiance(v, x, n, true, 0.0);

@@ -16,7 +16,9 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/ShaderLimits.h"
 
+#include <algorithm>
 #include <numeric>
 
 namespace bounce {
@@ -71,7 +73,21 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_gather.set("u_maxDepth", m_maxDepth);
         m_gather.set("u_tau", m_tau);
         m_gather.set("u_layers", m_light->layers());
-        fragments = m_eye->gather(m_gather);
+        // A root's walk visits at most (4^(d+1) - 1) / 3 nodes at depth d, each one iteration of the walk
+        // plus at most one climbing iteration: draws of as many roots as fit the shader loop budget
+        // (gpu/ShaderLimits.h), so deep trees are walked whole on llvmpipe too.
+        const int rootLevel = m_light->levels() - 1;
+        const int depth = std::min(m_maxDepth, rootLevel);
+        const int nodesPerRoot = ((1 << (2 * (depth + 1))) - 1) / 3;
+        const int rootsPerDraw = std::max(1, gl::kShaderLoopIterationBudget / (2 * nodesPerRoot + 1));
+        const glm::ivec2 roots = m_light->levelSize(rootLevel);
+        const int rootCount = roots.x * roots.y * m_light->layers();
+        const int batches = (rootCount + rootsPerDraw - 1) / rootsPerDraw;
+        fragments = m_eye->gather(m_gather, batches, [&](int b) {
+            m_gather.set("u_rootFirst", b * rootsPerDraw);
+            m_gather.set("u_rootEnd", (b + 1) * rootsPerDraw);
+        });
+        ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
     m_eye->finish(ctx, indirect, fragments);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -24,6 +24,9 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/ShaderLimits.h"
+
+#include <algorithm>
 
 namespace bounce {
 
@@ -47,7 +50,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
 }
 
 Expected<void> IsrTechnique::setup(const SetupContext&) {
-    if (m_rsmSize % m_vplGrid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", m_vplGrid, m_rsmSize);
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     if (m_lightFinest > m_rsmSize || m_lightCoarsest > m_lightFinest)
         return makeError("settings need lightCoarsest={} <= lightFinest={} <= rsmSize={}", m_lightCoarsest, m_lightFinest, m_rsmSize);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
@@ -112,7 +115,15 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         auto s = ctx.timers.scope("gather");
         vpls->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
-        fragments = m_eye->gather(m_gather);
+        // One loop iteration per VPL: draws of at most half the shader loop budget (gpu/ShaderLimits.h),
+        // so a million-VPL cache is gathered whole on llvmpipe too.
+        constexpr int kVplsPerDraw = gl::kShaderLoopIterationBudget / 2;
+        const int batches = std::max(1, (m_vplCount + kVplsPerDraw - 1) / kVplsPerDraw);
+        fragments = m_eye->gather(m_gather, batches, [&](int b) {
+            m_gather.set("u_vplFirst", static_cast<unsigned>(b * kVplsPerDraw));
+            m_gather.set("u_vplEnd", static_cast<unsigned>((b + 1) * kVplsPerDraw));
+        });
+        ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
     m_eye->finish(ctx, indirect, fragments);
     ctx.counters["vpls"] = static_cast<double>(m_vplCount);

@@ -90,7 +90,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
 }
 
 Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
-    if (m_rsmSize % m_vplGrid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", m_vplGrid, m_rsmSize);
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());

@@ -92,18 +92,32 @@ void MultiresBuffer::stencilSetup(const MinMaxPyramid& pyramid) {
     glDisable(GL_STENCIL_TEST);
 }
 
-std::vector<double> MultiresBuffer::drawStencilled(gl::Program& program) {
+std::vector<double> MultiresBuffer::drawStencilled(gl::Program& program, int batches,
+                                                   const std::function<void(int)>& setBatch) {
     std::vector<double> fragments(static_cast<size_t>(levels()), 0.0);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 1, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     forEachLevel(program, [&](int k) {
-        glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEndQuery(GL_SAMPLES_PASSED);
+        // The atlas starts at zero (begin()), so adding every batch, the first included, is the sum.
+        if (batches > 1) {
+            glEnable(GL_BLEND);
+            glBlendEquation(GL_FUNC_ADD);
+            glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ZERO);
+        }
+        for (int b = 0; b < batches; ++b) {
+            if (setBatch) setBatch(b);
+            // Every batch shades the same stencilled fragments: count them once.
+            if (b == 0) glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            if (b == 0) glEndQuery(GL_SAMPLES_PASSED);
+            // llvmpipe queues draws until a flush: one unit of work per batch, as a watchdog needs.
+            if (batches > 1) glFlush();
+        }
         GLuint64 samples = 0;
         glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &samples);
         fragments[static_cast<size_t>(k)] = static_cast<double>(samples);
+        glDisable(GL_BLEND);
     });
     glDisable(GL_STENCIL_TEST);
     return fragments;

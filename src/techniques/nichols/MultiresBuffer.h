@@ -20,7 +20,11 @@ public:
     void stencilSetup(const MinMaxPyramid& pyramid);
     // Draws `program` (full-screen-triangle vertex stage) over every level's rectangle with the stencil
     // test EQUAL 1; u_level and u_levelOrigin are set per level. Returns fragments per level.
-    std::vector<double> drawStencilled(gl::Program& program);
+    // With batches > 1 each level is drawn `batches` times, setBatch(b) setting the program's uniforms
+    // for batch b first; the batches' RGB add up (blending) and alpha stays the program's (the "rendered
+    // here" flag) — how a long gather stays within the shader loop budget (gpu/ShaderLimits.h).
+    std::vector<double> drawStencilled(gl::Program& program, int batches = 1,
+                                       const std::function<void(int)>& setBatch = {});
     // Binds the atlas framebuffer with the whole atlas as viewport (for point splatting, no stencil).
     void bindAtlas();
     glm::ivec2 atlasSize() const { return m_atlasSize; }

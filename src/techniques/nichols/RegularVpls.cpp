@@ -2,6 +2,7 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/ShaderLimits.h"
 
 namespace bounce::nichols {
 
@@ -14,6 +15,22 @@ Expected<RegularVpls> RegularVpls::create() {
     BOUNCE_TRY(r.m_program, gl::Program::build({"nichols.vplExtract",
                                                 {{GL_COMPUTE_SHADER, "techniques/nichols/vpl_extract.comp"}}}));
     return r;
+}
+
+Expected<void> RegularVpls::checkGrid(int rsmSize, int grid) {
+    if (grid <= 0 || rsmSize % grid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", grid, rsmSize);
+    // The extraction loops over a block's texels (and once per block row): block^2 + block iterations.
+    const int block = rsmSize / grid;
+    if (block * block + block > gl::kShaderLoopIterationBudget) {
+        int smallest = grid;
+        while (rsmSize / smallest * (rsmSize / smallest) + rsmSize / smallest > gl::kShaderLoopIterationBudget ||
+               rsmSize % smallest != 0)
+            ++smallest;
+        return makeError("setting vplGrid={} with rsmSize={}: blocks of {}x{} RSM texels per VPL exceed the shader loop "
+                         "budget of {} iterations; use vplGrid >= {}",
+                         grid, rsmSize, block, block, gl::kShaderLoopIterationBudget, smallest);
+    }
+    return {};
 }
 
 void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {

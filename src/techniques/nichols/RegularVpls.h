@@ -17,6 +17,10 @@ static_assert(sizeof(VplRecord) == 48);
 class RegularVpls {
 public:
     static Expected<RegularVpls> create();
+    // The settings check of every technique with a regular VPL grid: grid divides rsmSize, and one
+    // VPL's block of (rsmSize / grid)^2 texels fits the extraction's shader loop budget
+    // (gpu/ShaderLimits.h; blocks up to 128^2).
+    static Expected<void> checkGrid(int rsmSize, int grid);
     // grid must divide rsm.size(); both are powers of two in practice (BOUNCE_CHECKed).
     void extract(const ReflectiveShadowMap& rsm, int grid);
 

@@ -26,10 +26,11 @@ void StencilledGather::prepare(FrameContext& ctx, int eyeCoarsest, const Pyramid
     m_buffer->stencilSetup(*m_eye);
 }
 
-std::vector<double> StencilledGather::gather(gl::Program& program) {
+std::vector<double> StencilledGather::gather(gl::Program& program, int batches,
+                                             const std::function<void(int)>& setBatch) {
     m_eye->geometry().bind(BINDING_TEX_TECH0);
     m_eye->normal().bind(BINDING_TEX_TECH1);
-    return m_buffer->drawStencilled(program);
+    return m_buffer->drawStencilled(program, batches, setBatch);
 }
 
 void StencilledGather::finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments) {

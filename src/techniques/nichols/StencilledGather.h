@@ -21,7 +21,8 @@ public:
     // Draws `program` over the stencilled cells of every level, with the eye pyramid's geometry and
     // normal bound at BINDING_TEX_TECH0/1 (the patch each cell gathers for). The caller opens the
     // "gather" timer and binds its light data first. Returns the fragments shaded per level.
-    std::vector<double> gather(gl::Program& program);
+    // With batches > 1, as MultiresBuffer::drawStencilled: setBatch(b) sets batch b's uniforms.
+    std::vector<double> gather(gl::Program& program, int batches = 1, const std::function<void(int)>& setBatch = {});
     // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance; sets the
     // counters "fragments/level-k" and "gatherFragments" from gather()'s result.
     void finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments);

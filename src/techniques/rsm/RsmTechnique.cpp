@@ -23,6 +23,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/ShaderLimits.h"
 
 #include <algorithm>
 
@@ -36,12 +37,11 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("minDistance", m_minDistance, "r clamp of the point form factor, metres (assumption; the thesis gives no value)", 0.0f, 10.0f);
     v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
             "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
-    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, rounded down to whole VPL-grid rows (at least one); batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
+    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, rounded down to whole VPL-grid rows (at least one) and capped by the shader loop budget (65535 loop iterations per invocation on llvmpipe); batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
 }
 
 Expected<void> RsmTechnique::setup(const SetupContext&) {
-    if (m_rsmSize % m_vplGrid != 0)
-        return makeError("setting vplGrid={} does not divide rsmSize={}", m_vplGrid, m_rsmSize);
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
@@ -84,7 +84,10 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     // A batch is whole rows of the VPL grid (at least one), so the shader walks rows without an integer
     // division per VPL. The first batch writes (also clearing pixels without geometry), the others add.
     const int rows = m_vpls->grid() * m_vpls->layers();
-    const int rowsPerBatch = std::max(1, m_vplBatch / m_vpls->grid());
+    // Each row costs grid inner iterations plus one outer: rows stay within the shader loop budget, or
+    // llvmpipe drops the batch's last VPLs (gpu/ShaderLimits.h).
+    const int grid = m_vpls->grid();
+    const int rowsPerBatch = std::max(1, std::min(m_vplBatch / grid, gl::kShaderLoopIterationBudget / (grid + 1)));
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);

@@ -29,9 +29,10 @@ private:
     std::string m_formFactor{"disk"};
     float m_minDistance = 0.05f;  // metres; Eq. 3.2's r^2 clamp, value not given (assumption)
     bool m_glossy = false;        // the thesis's gather is Lambertian; on = full BRDF (multires-splat mode A's limit)
-    // VPLs per gather draw: 64k VPLs over a 64^2 image take about 7 s on llvmpipe (measured, rsm.md), a
-    // GPU milliseconds, well under its ~2 s watchdog. Engineering choice, not from the thesis.
-    int m_vplBatch = 65536;
+    // VPLs per gather draw: half of llvmpipe's 65535-iteration loop budget per invocation (gpu/
+    // ShaderLimits.h); 32k VPLs over a 64^2 image take a few seconds on llvmpipe, a GPU milliseconds,
+    // well under its ~2 s watchdog. Engineering choice, not from the thesis.
+    int m_vplBatch = 32768;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_vpls;
     gl::Program m_gather;

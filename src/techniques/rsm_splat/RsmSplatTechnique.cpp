@@ -33,7 +33,7 @@ void RsmSplatTechnique::visitSettings(SettingsVisitor& v) {
 }
 
 Expected<void> RsmSplatTechnique::setup(const SetupContext&) {
-    if (m_rsmSize % m_vplGrid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", m_vplGrid, m_rsmSize);
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_splat, gl::Program::build({"rsmSplat", {{GL_VERTEX_SHADER, "techniques/rsm_splat/splat.vert"},
