@@ -5,6 +5,7 @@
 // other Nichols tests use the 256^2 every-texel gather (NicholsTestSupport.h), which this test ties to the
 // million-VPL limit.
 #include "NicholsTestSupport.h"
+#include "metrics/ErrorMetrics.h"
 
 namespace bounce {
 namespace {
@@ -17,7 +18,8 @@ struct Case {
     const char* name;
     const char* technique;
     std::map<std::string, std::string> settings;
-    double bound;  // relative RMS error against the million-VPL gather
+    double bound;        // relative RMS error against the million-VPL gather
+    double relMseBound;  // relMSE (metrics/ErrorMetrics.h, the measure) against it
 };
 
 TEST_F(NicholsMillionVplGpuTest, EveryTechniqueIsWithinItsBoundOfTheMillionVplGather) {
@@ -52,6 +54,10 @@ TEST_F(NicholsMillionVplGpuTest, EveryTechniqueIsWithinItsBoundOfTheMillionVplGa
         const double error = relativeRmsError(indirect, limit);
         RecordProperty(std::string(c.name) + "RelRms", std::to_string(error));
         EXPECT_LT(error, c.bound) << c.name;
+        auto metrics = compareImages(indirect, limit);
+        ASSERT_TRUE(metrics.ok()) << metrics.error().message;
+        RecordProperty(std::string(c.name) + "RelMse", std::to_string(metrics->relMse));
+        EXPECT_LT(metrics->relMse, c.relMseBound) << c.name;
         // More VPLs are closer to the limit: every 256-VPL technique is further away than the 65k-VPL proxy.
         EXPECT_GT(error, proxyError) << c.name;
     }
