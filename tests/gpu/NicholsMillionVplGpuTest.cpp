@@ -41,12 +41,14 @@ TEST_F(NicholsMillionVplGpuTest, EveryTechniqueIsWithinItsBoundOfTheMillionVplGa
     // GPU rounding and small retuning; a broken pass (lost VPLs, wrong form factor, a level missing in
     // the upsampling) moves these errors far beyond that. They are large in absolute terms because 256
     // VPLs are few and the 16^2 coarsest eye level covers a 4x4-pixel block of a 64^2 image.
+    // relMSE (mean of (x - r)^2 / (r^2 + 0.01)) is small in absolute terms because the 0.01 W^2/(m^4 sr^2)
+    // epsilon dominates the dim indirect light; its bounds are likewise the measured value plus ~25 %.
     const std::vector<Case> cases = {
-        {"rsm", "rsm", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.36},                                  // 29.7 %
-        {"isrRegular", "isr", {{"rsmSize", "256"}, {"vplMode", "regular"}, {"vplGrid", "16"}}, 0.36},    // 29.9 %
-        {"multiresSplat", "multires-splat", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.31},            // 25.7 %
-        {"isrClusters", "isr", {{"rsmSize", "256"}, {"lightFinest", "64"}}, 0.23},                       // 18.9 %
-        {"hisr", "hisr", {{"rsmSize", "256"}}, 0.24},                                                    // 20.1 %
+        {"rsm", "rsm", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.36, 0.0096},                                // 29.7 %, 0.0076
+        {"isrRegular", "isr", {{"rsmSize", "256"}, {"vplMode", "regular"}, {"vplGrid", "16"}}, 0.36, 0.0098},  // 29.9 %, 0.0078
+        {"multiresSplat", "multires-splat", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.31, 0.0099},          // 25.7 %, 0.0079
+        {"isrClusters", "isr", {{"rsmSize", "256"}, {"lightFinest", "64"}}, 0.23, 0.0043},                     // 18.9 %, 0.0034
+        {"hisr", "hisr", {{"rsmSize", "256"}}, 0.24, 0.0051},                                                  // 20.1 %, 0.0041
     };
     for (const Case& c : cases) {
         const Image indirect = renderIndirect(*scene, c.technique, c.settings, kSize);
