@@ -88,11 +88,12 @@ TEST_F(IsrGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     RecordProperty("combinedRelRms", std::to_string(combined));
     // Thesis R6: 2-3 % RMS from eye-space clustering, 5-6 % combined (1024^2 image, 1024^2 RSM). Measured
     // here (64^2 image): eye clustering 3.0 % (against the same 1024 VPLs); clusters over a 128^2 RSM
-    // against the 256^2 every-texel limit 13.0 %, of which 5.5 % is the RSM resolution alone (rsm test);
+    // against the 256^2 every-texel limit 10.6 % (13.0 % before clusters were shot from their centre
+    // sample instead of their mean point), of which 5.5 % is the RSM resolution alone (rsm test);
     // at 64^2 the 16^2 coarsest level covers 16x more of the image than at 1024^2, so the combined bound
     // is wider than the thesis's figure. Bounds: measured plus ~20-60 % for other drivers.
     EXPECT_LT(eyeOnly, 0.05);
-    EXPECT_LT(combined, 0.16);
+    EXPECT_LT(combined, 0.13);
 }
 
 TEST_F(IsrGpuTest, EnergyDoesNotGrowWithRefinementDepth) {
