@@ -7,6 +7,7 @@
 
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <vector>
 
 using namespace bounce;
@@ -127,5 +128,33 @@ TEST_F(IsrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
         if (info.name == "furnace") {
             EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
         }
+    }
+}
+
+// A light cluster (isr) or tree node (hisr) of the finest level can still span a discontinuity (the
+// Cornell short block's top face and the floor below its front edge); shot from its texels' mean point,
+// its VPL floated 1 cm in front of the block and lit two hot spots on its front face. Shot from the
+// patch's centre sample, no pixel exceeds the every-texel limit by that much any more.
+TEST_F(IsrGpuTest, LightClustersLeaveNoHotSpots) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 64;
+    const Image& limit = convergedLimit("cornell-box", kSize);
+    double peak = 0.0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) peak = std::max(peak, double(limit.at(x, y).g));
+    for (const char* technique : {"isr", "hisr"}) {
+        // eyeCoarsest = image size: every pixel gathers for itself, so only the light side is tested.
+        const Image image = renderIndirect(*scene, technique, {{"eyeCoarsest", "64"}}, kSize);
+        double worst = 0.0;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                const double reference = limit.at(x, y).g;
+                if (reference < 0.05 * peak) continue;  // dark pixels: ratios of tiny numbers
+                worst = std::max(worst, image.at(x, y).g / reference);
+            }
+        RecordProperty(std::string(technique) + "WorstRatio", std::to_string(worst));
+        // Measured: 1.95 (isr) and 2.2 (hisr) at near-field corners; 4.6 for both with mean points.
+        EXPECT_LT(worst, 3.0) << technique;
     }
 }
