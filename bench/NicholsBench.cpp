@@ -11,6 +11,7 @@
 // Run R1 and the errors with --benchmark_filter='NicholsR1|NicholsError' (a few minutes: the
 // million-VPL gather alone takes about two minutes at 64^2 on llvmpipe).
 #include "gpu/Context.h"
+#include "metrics/ErrorMetrics.h"
 #include "scene/SceneLoader.h"
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
@@ -43,18 +44,6 @@ std::unique_ptr<Pipeline> pipeline(const Scene& scene, const std::string& techni
     rs.shadowMapSize = 512;
     auto p = Pipeline::create(scene, std::move(*t), {size, size}, rs);
     return p.ok() ? std::move(*p) : nullptr;
-}
-
-double relativeRms(const Image& test, const Image& reference) {
-    double num = 0.0, den = 0.0;
-    for (int y = 0; y < test.height(); ++y)
-        for (int x = 0; x < test.width(); ++x)
-            for (int c = 0; c < 3; ++c) {
-                const double d = double(test.at(x, y)[c]) - reference.at(x, y)[c];
-                num += d * d;
-                den += double(reference.at(x, y)[c]) * reference.at(x, y)[c];
-            }
-    return den > 0.0 ? std::sqrt(num / den) : 0.0;
 }
 
 const Scene& cornellBox() {
@@ -122,7 +111,7 @@ void BM_NicholsError(benchmark::State& state, std::string technique, std::map<st
         return;
     }
     runFrames(state, *p);
-    state.counters["relRms"] = relativeRms(p->readback(Component::Indirect), limit);
+    state.counters["relRms"] = relativeRmsError(p->readback(Component::Indirect), limit);
 }
 
 void BM_NicholsFill(benchmark::State& state) {

@@ -67,6 +67,14 @@ ErrorMap relativeSquaredErrorMap(const Image& test, const Image& reference, doub
     return channelMeanMap(test, reference, [epsilon](double x, double r) { return squared(x, r) / (r * r + epsilon); });
 }
 
+double relativeRmsError(const Image& test, const Image& reference) {
+    checkSameSize(test, reference);
+    const double meanSquaredError = channelMean(test, reference, squared);
+    const double meanSquare = channelMean(test, reference, [](double, double r) { return r * r; });
+    if (meanSquare > 0.0) return std::sqrt(meanSquaredError / meanSquare);
+    return meanSquaredError > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
+
 double psnr(const Image& testDisplay, const Image& referenceDisplay) {
     checkSameSize(testDisplay, referenceDisplay);
     const double mse = channelMean(testDisplay, referenceDisplay, squared);

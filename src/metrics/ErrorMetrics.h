@@ -56,6 +56,11 @@ ErrorMap absoluteErrorMap(const Image& test, const Image& reference);
 ErrorMap squaredErrorMap(const Image& test, const Image& reference);
 ErrorMap relativeSquaredErrorMap(const Image& test, const Image& reference, double epsilon = kRelMseEpsilon);
 
+// sqrt(sum (x - r)^2 / sum r^2) over pixels and channels, linear: the RMS error relative to the
+// reference's RMS, the measure of Nichols (2010) Figs. 4.9/4.13. 0 for two black images, +infinity for a
+// black reference and a test that is not. Same size required (checked).
+double relativeRmsError(const Image& test, const Image& reference);
+
 // PSNR in dB of two display images with peak value 1; +infinity when they are identical.
 double psnr(const Image& testDisplay, const Image& referenceDisplay);
 

@@ -4,6 +4,7 @@
 // Figs. 4.9/4.13 (relative RMS error against the converged gather), and that gather, cached.
 #include "GpuTestSupport.h"
 #include "core/Settings.h"
+#include "metrics/ErrorMetrics.h"
 #include "render/RenderSettings.h"
 #include "scene/SceneLoader.h"
 #include "techniques/Pipeline.h"
@@ -61,19 +62,6 @@ inline const Image& convergedLimit(const std::string& sceneName, int size) {
     EXPECT_TRUE(scene.ok()) << sceneName;
     const std::string rsm = std::to_string(kLimitRsmSize);
     return cache[key] = renderIndirect(*scene, "rsm", {{"rsmSize", rsm}, {"vplGrid", rsm}}, size);
-}
-
-// sqrt(sum (x - r)^2 / sum r^2): the RMS error relative to the reference's RMS (Figs. 4.9, 4.13).
-inline double relativeRmsError(const Image& test, const Image& reference) {
-    double num = 0.0, den = 0.0;
-    for (int y = 0; y < test.height(); ++y)
-        for (int x = 0; x < test.width(); ++x)
-            for (int c = 0; c < 3; ++c) {
-                const double d = double(test.at(x, y)[c]) - reference.at(x, y)[c];
-                num += d * d;
-                den += double(reference.at(x, y)[c]) * reference.at(x, y)[c];
-            }
-    return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
 }
 
 inline double totalRadiance(const Image& image) {

@@ -175,6 +175,21 @@ TEST(ErrorMetrics, RelMseUsesReferenceSoItIsAsymmetric) {
     EXPECT_NEAR(absoluteErrorMap(one, zero).at(1, 1), 1.0f, 0.0f);
 }
 
+TEST(ErrorMetrics, RelativeRmsErrorOfKnownPairs) {
+    // r = 2, x = 2.5 everywhere: sqrt(0.25 / 4) = 0.25; a half-black reference (r = 0 or 2 per pixel)
+    // with x = 1 everywhere: sqrt(mean (1, 1) / mean (0, 4)) = sqrt(1 / 2).
+    const Image two(4, 2, glm::vec3(2.0f)), twoAndHalf(4, 2, glm::vec3(2.5f)), one(4, 2, glm::vec3(1.0f));
+    EXPECT_NEAR(relativeRmsError(twoAndHalf, two), 0.25, 1e-12);
+    Image half(4, 2, glm::vec3(0.0f));
+    for (int x = 0; x < 4; ++x) half.at(x, 0) = glm::vec3(2.0f);
+    EXPECT_NEAR(relativeRmsError(one, half), std::sqrt(0.5), 1e-12);
+    EXPECT_EQ(relativeRmsError(two, two), 0.0);
+    // A black reference: 0 for a black test, +infinity otherwise (no relative scale exists).
+    const Image black(4, 2, glm::vec3(0.0f));
+    EXPECT_EQ(relativeRmsError(black, black), 0.0);
+    EXPECT_TRUE(std::isinf(relativeRmsError(one, black)));
+}
+
 TEST(ErrorMetrics, PsnrOfKnownDisplayDifference) {
     // Display values differing by 0.1 everywhere: MSE 0.01, PSNR = 10 log10(1 / 0.01) = 20 dB.
     const Image a(4, 4, glm::vec3(0.5f)), b(4, 4, glm::vec3(0.6f));
