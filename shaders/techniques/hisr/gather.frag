@@ -29,23 +29,12 @@ uniform int u_rootFirst;
 uniform int u_rootEnd;
 layout(location = 0) out vec4 o_irradiance;
 
-// A node is shot from the RSM sample at its centre (position and normal of that texel; level 0 of the
-// tree is the RSM) with its summed flux and area, as isr's clusters: a mean position floats off the
-// surfaces when a node of the deepest allowed level spans a discontinuity, and lit receivers next to it
-// got bright spots. The node's mean is used only where the centre texel saw nothing.
+// An accepted node is one VPL (vpl.glsl patchVpl: on the RSM sample at the node's centre, with the
+// node's summed flux and area), as isr's clusters.
 vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n) {
     vec4 g = texelFetch(s_lightGeometry, node, level);
-    vec4 f = texelFetch(s_lightFlux, node, level);
     if (g.w <= 0.0) return vec3(0.0);
-    int block = 1 << level;
-    ivec3 centre = ivec3(min(node.xy * block + block / 2, textureSize(s_lightGeometry, 0).xy - 1), node.z);
-    vec4 sampleGeometry = texelFetch(s_lightGeometry, centre, 0);
-    bool onSample = sampleGeometry.w > 0.0;
-    Vpl v;
-    v.position = vec4(onSample ? sampleGeometry.xyz / sampleGeometry.w : g.xyz / g.w, 1.0);
-    vec3 normal = onSample ? texelFetch(s_lightNormal, centre, 0).xyz : texelFetch(s_lightNormal, node, level).xyz;
-    v.normal = vec4(normalize(normal + vec3(0.0, 0.0, 1e-12)), f.w);
-    v.flux = vec4(f.rgb, g.w);
+    Vpl v = patchVpl(s_lightGeometry, s_lightNormal, node, level, g, texelFetch(s_lightFlux, node, level));
     return vplIrradiance(v, x, n, true, 0.0);
 }
 

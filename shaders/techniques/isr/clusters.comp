@@ -1,12 +1,9 @@
 // Multiresolution VPL clusters of basic image-space radiosity (Nichols 2010 §4.2.2, checklist item
 // 13): one invocation per cell of the finest light level f (a dense sampling of the RSM); each finds
 // the level k >= f at which its light-space patch is valid (no refinement at k, refined parent, as
-// the eye-space stencil rule), and only the first cell of each valid patch writes one VPL: at the RSM
-// sample at the patch's centre (position and normal of that texel: the thesis's VPLs are samples of a
-// dense regular sampling, Fig. 4.7, like the regular grid's), with the patch's summed flux and area (so
-// omega_j grows with the patch, Eqs. 4.2-4.3); the patch's mean only where the centre texel saw
-// nothing. A mean position floats off the surfaces when a patch of the finest level still spans a
-// discontinuity (it cannot be split further), and receivers next to it got bright spots.
+// the eye-space stencil rule), and only the first cell of each valid patch writes one VPL (vpl.glsl
+// patchVpl: on the RSM sample at the patch's centre, with the patch's summed flux and area, so omega_j
+// grows with the patch, Eqs. 4.2-4.3).
 // Appends to the VPL cache with an atomic counter.
 // Host uniforms: u_finest (level f), u_coarsest. Inputs: light pyramid (BINDING_TEX_TECH0..3).
 // Outputs: Vpl[] (BINDING_SSBO_TECH0), count (BINDING_SSBO_TECH1).
@@ -46,16 +43,7 @@ void main() {
     vec4 g = texelFetch(s_geometry, ivec3(cell, id.z), level);
     vec4 f = texelFetch(s_flux, ivec3(cell, id.z), level);
     if (g.w <= 0.0 || max(f.r, max(f.g, f.b)) <= 0.0) return;
-    // Level 0 of the pyramid is the RSM: a patch of level k covers 2^k x 2^k texels.
-    int block = 1 << level;
-    ivec3 centre = ivec3(min(cell * block + block / 2, textureSize(s_geometry, 0).xy - 1), id.z);
-    vec4 sampleGeometry = texelFetch(s_geometry, centre, 0);
-    bool onSample = sampleGeometry.w > 0.0;
-    Vpl v;
-    v.position = vec4(onSample ? sampleGeometry.xyz / sampleGeometry.w : g.xyz / g.w, 1.0);
-    vec3 normal = onSample ? texelFetch(s_normal, centre, 0).xyz : texelFetch(s_normal, ivec3(cell, id.z), level).xyz;
-    v.normal = vec4(normalize(normal + vec3(0.0, 0.0, 1e-12)), f.w);
-    v.flux = vec4(f.rgb, g.w);
+    Vpl v = patchVpl(s_geometry, s_normal, ivec3(cell, id.z), level, g, f);
     uint index = atomicAdd(u_vplCount, 1u);
     u_vpls[index] = v;
 }
