@@ -40,6 +40,7 @@ void BM_ReferencePathTracerCornellBoxArea(benchmark::State& state) {
     settings.samplesPerPixel = kSamplesPerPixel;
     settings.bounces = kMaxReflections - 1;
     settings.threads = static_cast<int>(state.range(0));
+    settings.vectorized = state.range(1) != 0;
     auto tracer = PathTracer::create(cornellBoxArea(), settings);
     if (!tracer) {
         state.SkipWithError(tracer.error().message.c_str());
@@ -56,8 +57,15 @@ void BM_ReferencePathTracerCornellBoxArea(benchmark::State& state) {
     state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
     state.counters["rays/path"] = static_cast<double>(rays) / static_cast<double>(paths);
 }
-// Argument: worker threads (0 = every core).
-BENCHMARK(BM_ReferencePathTracerCornellBoxArea)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Arguments: worker threads (0 = every core), vectorised kernel (1) or scalar code only (0).
+BENCHMARK(BM_ReferencePathTracerCornellBoxArea)
+    ->ArgNames({"threads", "vectorized"})
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // Incoherent rays from random points inside the box in random directions: the raw Embree rate
 // through the ray-casting service, single rays and batches.

@@ -28,20 +28,7 @@ struct LightSample {
 
 class LightSampler {
 public:
-    LightSampler(const Scene& scene, const EmbreeScene& embree);
-
-    size_t lightCount() const noexcept { return m_entries.size(); }
-    bool empty() const noexcept { return m_entries.empty(); }
-
-    // Samples a light as seen from point p. Returns false when the chosen light sends nothing
-    // towards p (behind a one-sided emitter, outside a spot cone).
-    bool sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept;
-
-    // Solid-angle pdf with which sample() would have produced a point on triangle primId of
-    // geometry geomId, seen at `distance` under cosine `cosLight` (absolute value) at the light.
-    float pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept;
-
-private:
+    // Public for the path tracer's vectorised kernel, which reads emitters lane by lane.
     enum class Kind : uint8_t { Point, Spot, Directional, Area, Triangle };
     struct Entry {
         Kind kind;
@@ -61,6 +48,27 @@ private:
         uint32_t alias = 0;
     };
 
+    LightSampler(const Scene& scene, const EmbreeScene& embree);
+
+    size_t lightCount() const noexcept { return m_entries.size(); }
+    bool empty() const noexcept { return m_entries.empty(); }
+
+    // Samples a light as seen from point p. Returns false when the chosen light sends nothing
+    // towards p (behind a one-sided emitter, outside a spot cone).
+    bool sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept;
+
+    // Solid-angle pdf with which sample() would have produced a point on triangle primId of
+    // geometry geomId, seen at `distance` under cosine `cosLight` (absolute value) at the light.
+    float pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept;
+
+    // The entry sample() picks for uSelect.
+    const Entry& choose(float uSelect) const noexcept;
+    // The entry of triangle primId of geometry geomId if it emits, else null.
+    const Entry* emitter(uint32_t geomId, uint32_t primId) const noexcept;
+    // Every entry is a rectangle or a triangle (no point, spot or directional light).
+    bool allAreal() const noexcept { return m_allAreal; }
+
+private:
     void add(const Entry& entry, float weight);
 
     std::vector<Entry> m_entries;
@@ -70,14 +78,19 @@ private:
     // Per Embree geometry: the first entry of an emissive object's triangles (entry = base + primId),
     // the entry of an area light, or kNoIndex.
     std::vector<uint32_t> m_entryOfGeometry;
+    bool m_allAreal = true;
 };
 
-inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept {
+inline const LightSampler::Entry& LightSampler::choose(float uSelect) const noexcept {
     const float scaled = uSelect * static_cast<float>(m_entries.size());
     const size_t slot = std::min(static_cast<size_t>(scaled), m_entries.size() - 1);
     const float u = scaled - static_cast<float>(slot);
     const AliasSlot& a = m_aliasTable[slot];
-    const Entry& e = m_entries[u < a.threshold ? slot : a.alias];
+    return m_entries[u < a.threshold ? slot : a.alias];
+}
+
+inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept {
+    const Entry& e = choose(uSelect);
     const float pmf = e.pmf;
     if (!(pmf > 0.0f)) return false;
     switch (e.kind) {
@@ -140,13 +153,17 @@ inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2,
     return false;
 }
 
-inline float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept {
+inline const LightSampler::Entry* LightSampler::emitter(uint32_t geomId, uint32_t primId) const noexcept {
     uint32_t index = m_entryOfGeometry[geomId];
-    if (index == kNoIndex || m_entries.empty()) return 0.0f;
+    if (index == kNoIndex || m_entries.empty()) return nullptr;
     if (m_entries[index].kind == Kind::Triangle) index += primId;
-    const Entry& e = m_entries[index];
-    if (!(cosLight > 0.0f) || !(e.area > 0.0f)) return 0.0f;
-    return e.pmf * distance * distance / (e.area * cosLight);
+    return &m_entries[index];
+}
+
+inline float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept {
+    const Entry* e = emitter(geomId, primId);
+    if (!e || !(cosLight > 0.0f) || !(e->area > 0.0f)) return 0.0f;
+    return e->pmf * distance * distance / (e->area * cosLight);
 }
 
 }  // namespace bounce

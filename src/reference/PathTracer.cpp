@@ -3,6 +3,7 @@
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "reference/Bsdf.h"
+#include "reference/LambertKernel.h"
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
 
@@ -20,6 +21,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <cstring>
+#include <memory>
 
 namespace bounce {
 
@@ -53,21 +56,12 @@ constexpr int kTileSize = 16;
 // the time limit every 4 samples per pixel (about half a second).
 constexpr uint64_t kMinPathsPerPass = 1u << 20;
 
-// Camera rays go to Embree as packets of 4 x 4 pixels (rtcIntersect16): neighbouring primary rays
-// traverse the same BVH nodes, which makes them about twice as cheap as single rays.
-constexpr int kPacketSide = 4;
-constexpr int kPacketSize = kPacketSide * kPacketSide;
+// A tile's paths run 16 at a time, as the lanes of one Embree packet (rtcIntersect16, rtcOccluded16)
+// and of the vectorised kernel.
+constexpr int kLanesOfPacket = lambert::kLanes;
+static_assert(kLanesOfPacket == 16, "the Embree packet calls are the 16-wide ones");
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-RTCRayHit makeRayHit(glm::vec3 origin, glm::vec3 direction, float tMax) {
-    RTCRayHit rh;
-    setRay(rh.ray, origin, direction, 0.0f, tMax);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-}
 
 template <class Packet>
 void setPacketRay(Packet& ray, int lane, glm::vec3 origin, glm::vec3 direction, float tMax) {
@@ -83,12 +77,6 @@ void setPacketRay(Packet& ray, int lane, glm::vec3 origin, glm::vec3 direction, 
     ray.mask[lane] = 0xffffffffu;
     ray.id[lane] = 0;
     ray.flags[lane] = 0;
-}
-
-RTCRay makeShadowRay(glm::vec3 origin, glm::vec3 direction, float tMax) {
-    RTCRay r;
-    setRay(r, origin, direction, 0.0f, tMax);
-    return r;
 }
 
 }  // namespace
@@ -173,7 +161,8 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
       m_lights(scene, m_embree),
       m_camera(scene.camera.at(m_time), settings.width, settings.height),
       m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
-                                                                          : settings.bounces + 1) {
+                                                                          : settings.bounces + 1),
+      m_vectorized(settings.vectorized && m_lights.allAreal()) {
     m_shading.resize(m_embree.geometries().size());
     for (size_t i = 0; i < m_shading.size(); ++i) {
         const SceneGeometry& g = m_embree.geometries()[i];
@@ -190,7 +179,34 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
             s.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
             s.lambertian = m.specularF0 == 0.0f && m.metallic == 0.0f;
         }
+        s.flatUntextured = g.normals.empty() && s.texture == nullptr;
         s.emissive = maxComponent(s.emitted) > 0.0f;
+    }
+    // One record per triangle with all the kernel reads of its hits, so loading a lane is one lookup.
+    m_kernelTriangleBase.resize(m_shading.size());
+    for (size_t gi = 0; gi < m_shading.size(); ++gi) {
+        const SceneGeometry& g = m_embree.geometries()[gi];
+        const Shading& sh = m_shading[gi];
+        m_kernelTriangleBase[gi] = static_cast<uint32_t>(m_kernelTriangles.size());
+        for (size_t t = 0; t < g.triangles.size(); ++t) {
+            KernelTriangle k;
+            const glm::uvec3 tri = g.triangles[t];
+            k.p0 = g.positions[tri.x];
+            k.p1 = g.positions[tri.y];
+            k.p2 = g.positions[tri.z];
+            k.normal = g.faceNormals[t];
+            k.albedo = sh.diffuseAlbedo;
+            k.emitted = sh.emitted;
+            const LightSampler::Entry* emitter = m_lights.emitter(static_cast<uint32_t>(gi), static_cast<uint32_t>(t));
+            k.emitterPmf = emitter ? emitter->pmf : 0.0f;
+            k.emitterArea = emitter ? emitter->area : 0.0f;
+            k.emissive = sh.emissive;
+            k.twoSided = sh.twoSided;
+            k.absorber = sh.absorber;
+            k.kernelAlways = sh.flatUntextured && (sh.lambertian || sh.absorber);
+            k.kernelDiffuseOnly = sh.flatUntextured && m_settings.diffuseOnly;
+            m_kernelTriangles.push_back(k);
+        }
     }
 }
 
@@ -300,129 +316,228 @@ PathTracer::Step PathTracer::scatter(PathState& path, const HitRecord& hit, Shad
     return Step::Continue;
 }
 
-PathTracer::HitRecord PathTracer::intersect(const PathState& path, Counters& counters) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh = makeRayHit(path.origin, path.direction, path.tMax);
-    rtcIntersect1(m_embree.handle(), &context, &rh);
-    ++counters.rays;
-    return {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
+// The lanes' state in and out of a PathState, for scatter().
+PathTracer::PathState PathTracer::laneState(const lambert::Lanes& L, int i) {
+    PathState path;
+    path.rng = Rng::fromState(L.rng[i]);
+    path.radiance = L.radiance.at(i);
+    path.throughput = L.throughput.at(i);
+    path.origin = L.origin.at(i);
+    path.direction = L.direction.at(i);
+    path.tMax = L.tMax[i];
+    path.reflections = L.reflections[i];
+    path.bsdfPdf = L.bsdfPdf[i];
+    path.culledCrossings = L.culledCrossings[i];
+    return path;
 }
 
-bool PathTracer::visible(const ShadowRay& shadow, Counters& counters) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay ray = makeShadowRay(shadow.origin, shadow.direction, shadow.tMax);
-    rtcOccluded1(m_embree.handle(), &context, &ray);
-    ++counters.rays;
-    ++counters.shadowRays;
-    return ray.tfar >= 0.0f;
+void PathTracer::setLaneState(lambert::Lanes& L, int i, const PathState& path) {
+    L.rng[i] = path.rng.state();
+    L.radiance.set(i, path.radiance);
+    L.throughput.set(i, path.throughput);
+    L.origin.set(i, path.origin);
+    L.direction.set(i, path.direction);
+    L.tMax[i] = path.tMax;
+    L.reflections[i] = path.reflections;
+    L.bsdfPdf[i] = path.bsdfPdf;
+    L.culledCrossings[i] = path.culledCrossings;
 }
 
-void PathTracer::finishPath(PathState& path, HitRecord hit, Counters& counters) const {
-    while (hit.geomId != RTC_INVALID_GEOMETRY_ID) {
+bool PathTracer::loadKernelLane(lambert::Lanes& L, int i) const {
+    const KernelTriangle& k = m_kernelTriangles[m_kernelTriangleBase[L.geomId[i]] + L.primId[i]];
+    const int reflections = L.reflections[i];
+    if (!(k.kernelAlways || (k.kernelDiffuseOnly && reflections + 1 >= 2))) return false;
+    // A camera ray crossing a culled back face is traced on by scatter().
+    if (reflections == 0 && !k.twoSided && !(glm::dot(L.direction.at(i), k.normal) < 0.0f)) return false;
+    L.in[i] = 1;
+    L.p0.set(i, k.p0);
+    L.p1.set(i, k.p1);
+    L.p2.set(i, k.p2);
+    L.faceNormal.set(i, k.normal);
+    L.albedo.set(i, k.albedo);
+    L.emitted.set(i, k.emitted);
+    L.emitterPmf[i] = k.emitterPmf;
+    L.emitterArea[i] = k.emitterArea;
+    L.emissive[i] = k.emissive;
+    L.twoSided[i] = k.twoSided;
+    L.absorber[i] = k.absorber;
+    return true;
+}
+
+void PathTracer::shadeLanes(lambert::Lanes& L, const int* active) const {
+    int kernelLanes = 0;
+    for (int i = 0; i < kPacketSize; ++i) {
+        L.in[i] = 0;
+        L.shadowActive[i] = 0;
+        L.stop[i] = 1;
+        if (!active[i] || L.geomId[i] == RTC_INVALID_GEOMETRY_ID) continue;
+        if (m_vectorized && loadKernelLane(L, i)) {
+            ++kernelLanes;
+            continue;
+        }
+        PathState path = laneState(L, i);
         ShadowRay shadow;
-        const Step step = scatter(path, hit, shadow);
-        if (shadow.active && visible(shadow, counters)) path.radiance += shadow.contribution;
-        if (step == Step::Stop) return;
-        hit = intersect(path, counters);
+        const HitRecord hit{L.geomId[i], L.primId[i], L.u[i], L.v[i], L.t[i]};
+        L.stop[i] = scatter(path, hit, shadow) == Step::Stop;
+        setLaneState(L, i, path);
+        L.shadowActive[i] = shadow.active;
+        if (!shadow.active) continue;
+        L.shadowOrigin.set(i, shadow.origin);
+        L.shadowDirection.set(i, shadow.direction);
+        L.shadowTMax[i] = shadow.tMax;
+        L.shadowContribution.set(i, shadow.contribution);
     }
+    if (kernelLanes == 0) return;
+    lambert::hit(L, m_maxReflections, m_settings.indirectOnly);
+    for (int i = 0; i < kPacketSize; ++i) {
+        if (!L.in[i] || L.stop[i]) continue;
+        const LightSampler::Entry& e = m_lights.choose(L.uSelect[i]);
+        L.lightCorner.set(i, e.position);
+        L.lightEdge1.set(i, e.edge1);
+        L.lightEdge2.set(i, e.edge2);
+        L.lightNormal.set(i, e.normal);
+        L.lightEmitted.set(i, e.emitted);
+        L.lightArea[i] = e.area;
+        L.lightPmf[i] = e.pmf;
+        L.lightTriangle[i] = e.kind == LightSampler::Kind::Triangle;
+        L.lightTwoSided[i] = e.twoSided;
+    }
+    lambert::reflect(L, kRouletteStartReflections);
 }
+
+namespace {
+
+template <class T>
+void copyLanes(T* to, const T (&from)[kLanesOfPacket]) {
+    std::memcpy(to, from, sizeof from);
+}
+
+}  // namespace
 
 void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_t s1, PixelSums* sums,
                             Counters& counters) const {
     const FlushDenormals flushDenormals;
     const auto width = static_cast<size_t>(m_settings.width);
-    RTCIntersectContext coherent;
+    RTCIntersectContext incoherent, coherent;
+    rtcInitIntersectContext(&incoherent);
     rtcInitIntersectContext(&coherent);
     coherent.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) int valid[kPacketSize];  // Embree requires the masks to be 64-byte aligned
+    alignas(64) int rayValid[kPacketSize];  // Embree requires the masks to be 64-byte aligned
     alignas(64) int shadowValid[kPacketSize];
     alignas(64) RTCRayHit16 packet;
     alignas(64) RTCRay16 shadowPacket;
-    std::array<PathState, kPacketSize> paths;
-    std::array<ShadowRay, kPacketSize> shadows;
-    std::array<Step, kPacketSize> steps;
     std::array<size_t, kPacketSize> pixels;
+    auto lanesStorage = std::make_unique<lambert::Lanes>();  // 9 KB: off the stack, zeroed once
+    lambert::Lanes& L = *lanesStorage;
+    // The fields of the packets that never change.
+    for (int lane = 0; lane < kPacketSize; ++lane) {
+        packet.ray.tnear[lane] = 0.0f;
+        packet.ray.time[lane] = 0.0f;
+        packet.ray.mask[lane] = 0xffffffffu;
+        packet.ray.id[lane] = 0;
+        packet.ray.flags[lane] = 0;
+        shadowPacket.tnear[lane] = 0.0f;
+        shadowPacket.time[lane] = 0.0f;
+        shadowPacket.mask[lane] = 0xffffffffu;
+        shadowPacket.id[lane] = 0;
+        shadowPacket.flags[lane] = 0;
+    }
 
-    for (int by = y0; by < y1; by += kPacketSide) {
-        for (int bx = x0; bx < x1; bx += kPacketSide) {
-            int lanes = 0;
-            for (int lane = 0; lane < kPacketSize; ++lane) {
-                const int x = bx + lane % kPacketSide, y = by + lane / kPacketSide;
-                const bool inside = x < x1 && y < y1;
-                valid[lane] = inside ? -1 : 0;
-                pixels[lane] = inside ? static_cast<size_t>(y) * width + static_cast<size_t>(x) : 0;
-                lanes += inside ? 1 : 0;
+    // The tile's paths, sample by sample and row by row within a sample, are a queue that 16 lanes
+    // work through: each step sends every lane's ray to Embree as one packet and shades the lanes
+    // together, and a lane whose path ends takes the next path of the queue at once, so the packet
+    // stays full until the tile's last paths. A pixel's samples finish in an order fixed by the
+    // tile alone, so the sums are bit-identical for any thread count.
+    const int tileWidth = x1 - x0;
+    const auto tilePixels = static_cast<uint64_t>(tileWidth) * static_cast<uint64_t>(y1 - y0);
+    const uint64_t queueEnd = tilePixels * (s1 - s0);
+    uint64_t queued = 0;
+    const auto startPath = [&](int lane) {
+        if (queued == queueEnd) return false;
+        const uint64_t k = queued++;
+        const auto sample = static_cast<uint32_t>(s0 + k / tilePixels);
+        const auto j = static_cast<int>(k % tilePixels);
+        const int x = x0 + j % tileWidth, y = y0 + j / tileWidth;
+        pixels[lane] = static_cast<size_t>(y) * width + static_cast<size_t>(x);
+        Rng rng(m_settings.seed, pixels[lane], sample);
+        const float jx = rng.next(), jy = rng.next();
+        const CameraRay r = m_camera.generate(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
+        PathState path;
+        path.rng = rng;
+        path.origin = r.origin;
+        path.direction = r.direction;
+        path.tMax = r.tMax;
+        setLaneState(L, lane, path);
+        return true;
+    };
+    int live = 0;
+    for (int lane = 0; lane < kPacketSize; ++lane) {
+        const bool started = startPath(lane);
+        rayValid[lane] = started ? -1 : 0;
+        live += started ? 1 : 0;
+    }
+    // The tile's first camera rays, and the shadow rays of their first reflections, start together
+    // and head the same way: Embree traces such packets faster when told. After that the lanes'
+    // paths are out of step.
+    for (bool first = true; live > 0; first = false) {
+        RTCIntersectContext* context = first ? &coherent : &incoherent;
+        copyLanes(packet.ray.org_x, L.origin.x);
+        copyLanes(packet.ray.org_y, L.origin.y);
+        copyLanes(packet.ray.org_z, L.origin.z);
+        copyLanes(packet.ray.dir_x, L.direction.x);
+        copyLanes(packet.ray.dir_y, L.direction.y);
+        copyLanes(packet.ray.dir_z, L.direction.z);
+        copyLanes(packet.ray.tfar, L.tMax);
+        for (int lane = 0; lane < kPacketSize; ++lane) {
+            packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+            packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(rayValid, m_embree.handle(), context, &packet);
+        copyLanes(L.geomId, packet.hit.geomID);
+        copyLanes(L.primId, packet.hit.primID);
+        copyLanes(L.u, packet.hit.u);
+        copyLanes(L.v, packet.hit.v);
+        copyLanes(L.t, packet.ray.tfar);
+        counters.rays += static_cast<uint64_t>(live);
+
+        shadeLanes(L, rayValid);
+
+        int shadowLanes = 0;
+        for (int lane = 0; lane < kPacketSize; ++lane) {
+            shadowValid[lane] = L.shadowActive[lane] ? -1 : 0;
+            shadowLanes += L.shadowActive[lane];
+        }
+        if (shadowLanes > 0) {
+            copyLanes(shadowPacket.org_x, L.shadowOrigin.x);
+            copyLanes(shadowPacket.org_y, L.shadowOrigin.y);
+            copyLanes(shadowPacket.org_z, L.shadowOrigin.z);
+            copyLanes(shadowPacket.dir_x, L.shadowDirection.x);
+            copyLanes(shadowPacket.dir_y, L.shadowDirection.y);
+            copyLanes(shadowPacket.dir_z, L.shadowDirection.z);
+            copyLanes(shadowPacket.tfar, L.shadowTMax);
+            rtcOccluded16(shadowValid, m_embree.handle(), context, &shadowPacket);
+            counters.rays += static_cast<uint64_t>(shadowLanes);
+            counters.shadowRays += static_cast<uint64_t>(shadowLanes);
+            for (int lane = 0; lane < kPacketSize; ++lane)
+                if (shadowValid[lane] && shadowPacket.tfar[lane] >= 0.0f)
+                    L.radiance.set(lane, L.radiance.at(lane) + L.shadowContribution.at(lane));
+        }
+
+        for (int lane = 0; lane < kPacketSize; ++lane) {
+            if (!rayValid[lane] || !L.stop[lane]) continue;
+            glm::vec3 radiance = L.radiance.at(lane);
+            if (!finite(radiance)) {
+                ++counters.invalidSamples;
+                radiance = glm::vec3(0.0f);
             }
-            for (uint32_t s = s0; s < s1; ++s) {
-                // Camera rays of the 4 x 4 block as one coherent packet.
-                for (int lane = 0; lane < kPacketSize; ++lane) {
-                    if (!valid[lane]) continue;
-                    PathState& path = paths[lane];
-                    path = PathState{};
-                    path.rng = Rng(m_settings.seed, pixels[lane], s);
-                    const float jx = path.rng.next(), jy = path.rng.next();
-                    const int x = bx + lane % kPacketSide, y = by + lane / kPacketSide;
-                    const CameraRay r = m_camera.generate(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
-                    path.origin = r.origin;
-                    path.direction = r.direction;
-                    path.tMax = r.tMax;
-                    setPacketRay(packet.ray, lane, r.origin, r.direction, r.tMax);
-                    packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
-                    packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
-                }
-                rtcIntersect16(valid, m_embree.handle(), &coherent, &packet);
-                counters.rays += static_cast<uint64_t>(lanes);
-
-                // The first reflection of every lane, whose shadow rays all start near each other
-                // and head for the same lights: traced as one coherent packet, about twice as fast
-                // as single rays. Later reflections are incoherent and go one ray at a time.
-                int shadowLanes = 0;
-                for (int lane = 0; lane < kPacketSize; ++lane) {
-                    shadowValid[lane] = 0;
-                    steps[lane] = Step::Stop;
-                    if (!valid[lane]) continue;
-                    PathState& path = paths[lane];
-                    HitRecord hit{packet.hit.geomID[lane], packet.hit.primID[lane], packet.hit.u[lane],
-                                  packet.hit.v[lane], packet.ray.tfar[lane]};
-                    ShadowRay& shadow = shadows[lane];
-                    shadow.active = false;
-                    while (hit.geomId != RTC_INVALID_GEOMETRY_ID) {
-                        steps[lane] = scatter(path, hit, shadow);
-                        if (steps[lane] != Step::Retrace) break;
-                        hit = intersect(path, counters);
-                    }
-                    if (hit.geomId == RTC_INVALID_GEOMETRY_ID) steps[lane] = Step::Stop;
-                    if (!shadow.active) continue;
-                    shadowValid[lane] = -1;
-                    ++shadowLanes;
-                    setPacketRay(shadowPacket, lane, shadow.origin, shadow.direction, shadow.tMax);
-                }
-                if (shadowLanes > 0) {
-                    rtcOccluded16(shadowValid, m_embree.handle(), &coherent, &shadowPacket);
-                    counters.rays += static_cast<uint64_t>(shadowLanes);
-                    counters.shadowRays += static_cast<uint64_t>(shadowLanes);
-                }
-
-                for (int lane = 0; lane < kPacketSize; ++lane) {
-                    if (!valid[lane]) continue;
-                    PathState& path = paths[lane];
-                    if (shadowValid[lane] && shadowPacket.tfar[lane] >= 0.0f) path.radiance += shadows[lane].contribution;
-                    if (steps[lane] == Step::Continue) finishPath(path, intersect(path, counters), counters);
-                    glm::vec3 L = path.radiance;
-                    if (!finite(L)) {
-                        ++counters.invalidSamples;
-                        L = glm::vec3(0.0f);
-                    }
-                    // Samples reach each pixel in increasing s whatever the thread: the sums are
-                    // bit-identical for any thread count.
-                    PixelSums& p = sums[pixels[lane]];
-                    const double y = luminance(L);
-                    p.radiance += glm::dvec3(L);
-                    p.lum += y;
-                    p.lum2 += y * y;
-                }
+            PixelSums& p = sums[pixels[lane]];
+            const double y = luminance(radiance);
+            p.radiance += glm::dvec3(radiance);
+            p.lum += y;
+            p.lum2 += y * y;
+            if (!startPath(lane)) {
+                rayValid[lane] = 0;
+                --live;
             }
         }
     }

@@ -11,14 +11,20 @@
 // surface: the back of a one-sided surface (seen by a reflected ray; the camera sees through it, as
 // the rasteriser culls it), or the emitting side of an area light, an opaque emitter that reflects
 // nothing. From behind, an area light is not there at all.
+//
+// Sixteen paths run side by side: each step traces all their rays as one Embree packet, then
+// shades the hits on flat, untextured Lambertian surfaces with the SIMD kernel of LambertKernel.h
+// and the others with scatter(); the kernel's results are bit-identical to scatter()'s.
 #include "core/Error.h"
 #include "core/Image.h"
 #include "reference/CameraRays.h"
 #include "reference/EmbreeScene.h"
+#include "reference/LambertKernel.h"
 #include "reference/LightSampler.h"
 #include "reference/Rng.h"
 #include "scene/Scene.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -40,6 +46,9 @@ struct PathTracerSettings {
     double timeLimitSeconds = 0.0;
     int threads = 0;                // 0: every hardware thread
     uint32_t frame = 0;             // render the scene at time scene.timeOfFrame(frame)
+    // Shade flat, untextured Lambertian hits lane-parallel (SIMD). The image is bit-identical
+    // either way; false keeps every lane on the scalar code (tests compare the two).
+    bool vectorized = true;
 
     static constexpr int kUnbounded = -1;
 };
@@ -99,9 +108,11 @@ public:
         bool twoSided = false;
         bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only)
         bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
+        bool flatUntextured = false;  // no vertex normals, no texture: the vectorised kernel may shade it
     };
 
 private:
+    static constexpr int kPacketSize = lambert::kLanes;  // paths traced side by side
     struct Counters;
     struct PixelSums;
     // One camera path in flight.
@@ -137,10 +148,23 @@ private:
     // `shadow` for the caller to trace), and the next direction. Retrace: the camera ray crossed a
     // culled back face and must be traced again from there.
     Step scatter(PathState& path, const HitRecord& hit, ShadowRay& shadow) const;
-    HitRecord intersect(const PathState& path, Counters& counters) const;
-    bool visible(const ShadowRay& shadow, Counters& counters) const;
-    // Follows a path one ray at a time until it ends.
-    void finishPath(PathState& path, HitRecord hit, Counters& counters) const;
+    // Path state of one lane, in and out of the structure-of-arrays form.
+    static PathState laneState(const lambert::Lanes& lanes, int i);
+    static void setLaneState(lambert::Lanes& lanes, int i, const PathState& path);
+    // Loads lane i's hit for the vectorised kernel if it is one the kernel shades.
+    bool loadKernelLane(lambert::Lanes& lanes, int i) const;
+    // One reflection of every active lane with a hit: the kernel for the lanes it shades, scatter()
+    // for the others. Leaves stop, and the shadow ray, in the lanes.
+    void shadeLanes(lambert::Lanes& lanes, const int* active) const;
+
+    // What the kernel reads of a hit triangle, gathered once (PathTracer.cpp).
+    struct KernelTriangle {
+        glm::vec3 p0, p1, p2, normal, albedo, emitted;
+        float emitterPmf = 0.0f, emitterArea = 0.0f;
+        bool emissive = false, twoSided = false, absorber = false;
+        bool kernelAlways = false;       // flat, untextured, Lambertian (or an area light)
+        bool kernelDiffuseOnly = false;  // flat and untextured, and --diffuse-only after the first vertex
+    };
 
     PathTracerSettings m_settings;
     float m_time;
@@ -149,6 +173,9 @@ private:
     CameraRays m_camera;
     std::vector<Shading> m_shading;
     int m_maxReflections;
+    bool m_vectorized;
+    std::vector<KernelTriangle> m_kernelTriangles;
+    std::vector<uint32_t> m_kernelTriangleBase;  // per Embree geometry: index of its first triangle
     double m_buildSeconds = 0.0;
 };
 

@@ -1,5 +1,7 @@
 #include "reference/ReferenceJob.h"
 
+#include "reference/LambertKernel.h"
+
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 
@@ -68,7 +70,9 @@ nlohmann::ordered_json referenceRunRecord(const Scene& scene, const ReferenceJob
           {"pixelsMeasured", result.noise.pixelsMeasured}}},
         {"renderer",
          {{"embree", fmt::format("{}.{}.{}", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH)},
-          {"tbb", TBB_VERSION_STRING}}},
+          {"tbb", TBB_VERSION_STRING},
+          // The vectorised shading kernel's variant on this CPU (docs/reference.md "Performance").
+          {"shadingKernel", lambert::instructionSet()}}},
     };
 }
 

@@ -30,16 +30,25 @@ public:
     // Uniform in [0, 1): 24 random bits scaled by 2^-24, so 1 is never returned.
     float next() noexcept { return static_cast<float>(nextBits() >> 8) * 0x1.0p-24f; }
 
+    // The raw state, for code that steps many generators side by side (reference/LambertKernel.cpp).
+    static Rng fromState(uint64_t state) noexcept {
+        Rng r;
+        r.m_state = state;
+        return r;
+    }
+    uint64_t state() const noexcept { return m_state; }
+
     static uint64_t mix(uint64_t z) noexcept {
         z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
         return z ^ (z >> 31);
     }
 
-private:
-    static constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ull;      // 2^64 / golden ratio (SplitMix64)
     static constexpr uint64_t kMultiplier = 6364136223846793005ull;  // PCG's 64-bit LCG multiplier (Knuth)
     static constexpr uint64_t kIncrement = 1442695040888963407ull;   // PCG's default odd increment
+
+private:
+    static constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ull;      // 2^64 / golden ratio (SplitMix64)
     uint64_t m_state = 0;
 };
 

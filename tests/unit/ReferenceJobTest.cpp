@@ -59,6 +59,8 @@ TEST(ReferenceJob, WritesImageAndRunRecord) {
     EXPECT_EQ(record["result"]["paths"], 8 * 6 * 16);
     EXPECT_GT(record["result"]["raysPerSecond"].get<double>(), 0.0);
     EXPECT_GT(record["result"]["pathsPerSecond"].get<double>(), 0.0);
+    const std::string kernel = record["renderer"]["shadingKernel"].get<std::string>();
+    EXPECT_TRUE(kernel == "x86-64-v4" || kernel == "x86-64-v3" || kernel == "x86-64") << kernel;
     EXPECT_GT(record["noise"]["meanPixelRelativeStdError"].get<double>(), 0.0);
     EXPECT_GT(record["noise"]["imageRelativeStdError"].get<double>(), 0.0);
     // No temporary files are left beside the outputs.
