@@ -1,6 +1,6 @@
 #pragma once
-// The path tracer's vectorised kernel: one reflection of up to 16 paths at once, for hits on flat,
-// untextured Lambertian surfaces lit by areal lights only (rectangles and emissive triangles) -- the
+// The path tracer's vectorised kernel: one reflection of up to 16 paths at once, for hits on
+// untextured Lambertian surfaces (flat or with vertex normals), under every kind of light -- the
 // built-in scenes' common case. It computes what PathTracer::scatter() computes for such a hit, with
 // the same floating-point operations in the same order and the same random numbers, so an image is
 // bit-identical whichever code shades it (tests/unit/ReferenceTest.cpp,
@@ -20,6 +20,9 @@
 namespace bounce::lambert {
 
 inline constexpr int kLanes = 16;
+
+// Light kinds in Lanes::lightKind; the values of LightSampler::Kind (PathTracer.cpp checks).
+inline constexpr int32_t kPointLight = 0, kSpotLight = 1, kDirectionalLight = 2, kAreaLight = 3, kTriangleLight = 4;
 
 // Plain arrays: the per-instruction-set translation units must not instantiate inline library code
 // (std::array's members), which the linker could then share with code built for the baseline.
@@ -49,15 +52,20 @@ struct Lanes {
     // The kernel's lanes and their hit triangles (PathTracer loads them).
     alignas(64) LaneArray<int32_t> in{};  // 1: this lane is shaded by the kernel
     Vec3Lanes p0{}, p1{}, p2{}, faceNormal{}, albedo{}, emitted{};
+    Vec3Lanes n0{}, n1{}, n2{};              // vertex normals where `smooth`
+    alignas(64) LaneArray<int32_t> smooth{};  // 1: shade with the interpolated vertex normal
     alignas(64) LaneArray<float> emitterPmf{}, emitterArea{};  // of the hit triangle; area 0 if it does not emit
     alignas(64) LaneArray<int32_t> emissive{}, twoSided{}, absorber{};
     // Between the stages: hit() leaves the light-choice number, PathTracer loads the chosen light.
-    Vec3Lanes position{}, normal{}, tangent{}, bitangent{}, offsetPosition{};
+    Vec3Lanes position{}, normal{}, shadingNormal{}, tangent{}, bitangent{}, offsetPosition{};
     alignas(64) LaneArray<float> uSelect{}, uLight1{}, uLight2{};
     alignas(64) LaneArray<int32_t> wantLight{};
+    // The chosen light, as LightSampler::Entry has it: kind (LightSampler::Kind's values), corner
+    // (point and spot: position), edges, normal (spot: axis; directional: propagation direction),
+    // emitted radiance, intensity or irradiance.
     Vec3Lanes lightCorner{}, lightEdge1{}, lightEdge2{}, lightNormal{}, lightEmitted{};
-    alignas(64) LaneArray<float> lightArea{}, lightPmf{};
-    alignas(64) LaneArray<int32_t> lightTriangle{}, lightTwoSided{};
+    alignas(64) LaneArray<float> lightArea{}, lightPmf{}, lightCosCutoff{}, lightExponent{};
+    alignas(64) LaneArray<int32_t> lightKind{}, lightTwoSided{};
     // Every lane's reflection (kernel or scalar code): whether the path ends, and its shadow ray.
     alignas(64) LaneArray<int32_t> stop{}, shadowActive{};
     Vec3Lanes shadowOrigin{}, shadowDirection{}, shadowContribution{};

@@ -138,6 +138,13 @@ void hitLanes(Lanes& L, int maxReflections, bool indirectOnly) noexcept {
     const F u = loadF(L.u), v = loadF(L.v);
     const F w = 1.0f - u - v;
     const F3 p = w * load3(L.p0) + u * load3(L.p1) + v * load3(L.p2);
+    // EmbreeScene::surface's shading normal: the interpolated vertex normal, normalised and turned to
+    // the face's side, on smooth meshes; the face normal otherwise.
+    const F3 nInterpolated = w * load3(L.n0) + u * load3(L.n1) + v * load3(L.n2);
+    const F nLength = sqrtOf(dot(nInterpolated, nInterpolated));
+    const F3 nUnit = nInterpolated / nLength;
+    const F3 nFaced = select3(dot(nUnit, ngFront) < 0.0f, -nUnit, nUnit);
+    const F3 shadingFront = select3(loadMask(L.smooth) & (nLength > 0.0f), nFaced, ngFront);
     const F cosIn = dot(dir, ngFront);
     const I front = cosIn < 0.0f;
     const I seen = front | loadMask(L.twoSided);
@@ -155,16 +162,20 @@ void hitLanes(Lanes& L, int maxReflections, bool indirectOnly) noexcept {
     const I stop = loadMask(L.absorber) | ~seen | (refl >= maxReflections);
     maskedStoreFlag(L.stop, in, stop);
 
-    // Flat: the shading normal is the geometric one, on the side the ray came from. Frame's basis.
-    const F3 n = select3(front, ngFront, -ngFront);
+    // Both normals on the side the ray came from; a shading normal that turns away from the viewer
+    // (at silhouettes) falls back to the face's. Frame's basis around it.
+    const F3 ng = select3(front, ngFront, -ngFront);
+    F3 n = select3(front, shadingFront, -shadingFront);
+    n = select3(dot(n, dir) >= 0.0f, ng, n);
     const F sign = bitsToFloat((floatToBits(n.z) & int32_t(0x80000000)) | floatToBits(splat(1.0f)));
     const F a = -1.0f / (sign + n.z);
     const F c = n.x * n.y * a;
     store3(L.tangent, {1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x});
     store3(L.bitangent, {c, sign + n.y * n.y * a, -n.y});
-    store3(L.normal, n);
+    store3(L.normal, ng);
+    store3(L.shadingNormal, n);
     store3(L.position, p);
-    store3(L.offsetPosition, offsetRayOrigin(p, n));
+    store3(L.offsetPosition, offsetRayOrigin(p, ng));
     storeMask(L.wantLight, indirectOnly ? (refl + 1 >= 2) : kAllLanes);
 
     U64 state = load<U64>(L.rng);
@@ -178,32 +189,59 @@ void hitLanes(Lanes& L, int maxReflections, bool indirectOnly) noexcept {
 void reflectLanes(Lanes& L, int rouletteStartReflections) noexcept {
     const I in = loadMask(L.in);
     I stop = loadMask(L.stop);
-    const F3 p = load3(L.position), ng = load3(L.normal), origin = load3(L.offsetPosition);
+    const F3 p = load3(L.position), ng = load3(L.normal), ns = load3(L.shadingNormal);
+    const F3 origin = load3(L.offsetPosition);
     F3 throughput = load3(L.throughput);
     const F3 albedo = load3(L.albedo);
 
-    // LightSampler::sample, rectangle (corner + u1 e1 + u2 e2) or triangle (uniformTriangle).
+    // LightSampler::sample for every kind of light. Rectangles (corner + u1 e1 + u2 e2) and triangles
+    // (uniformTriangle) are sampled by area, point and spot lights sit at their corner, directional
+    // lights send the same direction everywhere.
+    const I kind = loadI(L.lightKind);
+    const I areal = (kind == kAreaLight) | (kind == kTriangleLight), triangle = kind == kTriangleLight;
+    const I spot = kind == kSpotLight, directional = kind == kDirectionalLight;
     const F u1 = loadF(L.uLight1), u2 = loadF(L.uLight2);
     const F s = sqrtOf(u1);
-    const I triangle = loadMask(L.lightTriangle);
     const F b1 = select(triangle, 1.0f - s, u1), b2 = select(triangle, u2 * s, u2);
-    const F3 y = load3(L.lightCorner) + b1 * load3(L.lightEdge1) + b2 * load3(L.lightEdge2);
-    const F3 lightNormal = load3(L.lightNormal);
+    const F3 corner = load3(L.lightCorner), lightNormal = load3(L.lightNormal), emittedL = load3(L.lightEmitted);
+    const F3 y = select3(areal, corner + b1 * load3(L.lightEdge1) + b2 * load3(L.lightEdge2), corner);
     const F3 toLight = y - p;
     const F d2 = dot(toLight, toLight);
     const F d = sqrtOf(d2);
     const F invD = 1.0f / d;
-    const F3 wi = toLight * invD;
+    const F3 wi = select3(directional, -lightNormal, toLight * invD);
+    const F lightPmf = loadF(L.lightPmf);
+    // Rectangles and triangles: one-sided unless two-sided, MIS against the BRDF.
     const F cosFront = -dot(wi, lightNormal);
     const I lightFront = cosFront > 0.0f;
     const F cosLight = select(lightFront, cosFront, -cosFront);
-    const F lightArea = loadF(L.lightArea), lightPmf = loadF(L.lightPmf);
-    const I sampled = (d2 > 0.0f) & (lightFront | loadMask(L.lightTwoSided)) & (cosLight > 0.0f) & (dot(wi, ng) > 0.0f);
-    const F3 lightPoint = offsetRayOrigin(y, select3(lightFront, lightNormal, -lightNormal));
-    const F lightPdf = lightPmf * d2 / (lightArea * cosLight);
-    const F3 incident = load3(L.lightEmitted) * (lightArea * cosLight * invD * invD / lightPmf);
-    // The Lambert BRDF and its cosine-weighted pdf, and the power heuristic.
-    const F cosS = dot(wi, ng);
+    const F lightArea = loadF(L.lightArea);
+    const I arealSampled = (d2 > 0.0f) & (lightFront | loadMask(L.lightTwoSided)) & (cosLight > 0.0f);
+    const F3 arealPoint = offsetRayOrigin(y, select3(lightFront, lightNormal, -lightNormal));
+    const F3 arealIncident = emittedL * (lightArea * cosLight * invD * invD / lightPmf);
+    // Spot lights: inside the cone, intensity times cos^exponent (pow lane by lane, as libm has it).
+    const F cosAlpha = -dot(wi, lightNormal);
+    const I inCone = (cosAlpha > loadF(L.lightCosCutoff)) & ~(cosAlpha <= 0.0f);
+    alignas(64) float falloff[kLanes];
+    alignas(64) float cosAlphas[kLanes], exponents[kLanes];
+    alignas(64) int32_t powLanes[kLanes];
+    __builtin_memcpy(cosAlphas, &cosAlpha, sizeof cosAlphas);
+    __builtin_memcpy(exponents, L.lightExponent, sizeof exponents);
+    const I needsPow = in & spot & inCone;
+    __builtin_memcpy(powLanes, &needsPow, sizeof powLanes);
+    for (int i = 0; i < kLanes; ++i) falloff[i] = powLanes[i] ? __builtin_powf(cosAlphas[i], exponents[i]) : 1.0f;
+    const F3 intensity = select3(spot, emittedL * load<F>(falloff), emittedL);
+    const I pointSampled = (d2 > 0.0f) & (~spot | inCone);
+    const F3 pointIncident = intensity * (1.0f / (d2 * lightPmf));
+    const F3 directionalIncident = emittedL * (1.0f / lightPmf);
+
+    const I sampled = selectI(areal, arealSampled, selectI(directional, kAllLanes, pointSampled)) & (dot(wi, ng) > 0.0f);
+    const F3 incident = select3(areal, arealIncident, select3(directional, directionalIncident, pointIncident));
+    const F lightPdf = select(areal, lightPmf * d2 / (lightArea * cosLight), splat(0.0f));  // 0: a delta light
+
+    // The Lambert BRDF and its cosine-weighted pdf, and the power heuristic; the shadow ray ends at
+    // the light point, or runs to infinity towards a directional light.
+    const F cosS = dot(wi, ns);
     const I above = cosS > 0.0f;
     const F3 zero{splat(0.0f), splat(0.0f), splat(0.0f)};
     const F3 f = select3(above, albedo * kInvPi, zero);
@@ -211,9 +249,9 @@ void reflectLanes(Lanes& L, int rouletteStartReflections) noexcept {
     const F weight = select(lightPdf > 0.0f, powerHeuristic(lightPdf, pdf), splat(1.0f));
     maskedStoreFlag(L.shadowActive, in, ~stop & loadMask(L.wantLight) & sampled & (maxComponent3(f) > 0.0f));
     maskedStore3(L.shadowOrigin, in, origin);
-    maskedStore3(L.shadowDirection, in, lightPoint - origin);
+    maskedStore3(L.shadowDirection, in, select3(directional, wi, select3(areal, arealPoint, y) - origin));
     maskedStore3(L.shadowContribution, in, throughput * f * (cosS * weight) * incident);
-    maskedStore(L.shadowTMax, in, splat(1.0f));
+    maskedStore(L.shadowTMax, in, select(directional, splat(__builtin_inff()), splat(1.0f)));
 
     // cosineHemisphere: points of the square [-1,1)^2 until one falls inside the unit disc, each lane
     // drawing only until its own point is accepted.
@@ -228,7 +266,7 @@ void reflectLanes(Lanes& L, int rouletteStartReflections) noexcept {
         pending &= ~accept;
     }
     const F dz = sqrtOf(1.0f - dx * dx - dy * dy);
-    const F3 dirOut = dx * load3(L.tangent) + dy * load3(L.bitangent) + dz * ng;
+    const F3 dirOut = dx * load3(L.tangent) + dy * load3(L.bitangent) + dz * ns;
     throughput = throughput * albedo;
     stop |= dot(dirOut, ng) <= 0.0f;
     const I refl = loadI(L.reflections) + 1;

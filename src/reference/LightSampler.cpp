@@ -92,7 +92,6 @@ LightSampler::LightSampler(const Scene& scene, const EmbreeScene& embree) {
         m_entries.clear();
         return;
     }
-    for (const Entry& e : m_entries) m_allAreal = m_allAreal && (e.kind == Kind::Area || e.kind == Kind::Triangle);
     const size_t n = m_weights.size();
     for (size_t i = 0; i < n; ++i) m_entries[i].pmf = static_cast<float>(m_weights[i] / total);
 

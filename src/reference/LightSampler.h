@@ -65,8 +65,6 @@ public:
     const Entry& choose(float uSelect) const noexcept;
     // The entry of triangle primId of geometry geomId if it emits, else null.
     const Entry* emitter(uint32_t geomId, uint32_t primId) const noexcept;
-    // Every entry is a rectangle or a triangle (no point, spot or directional light).
-    bool allAreal() const noexcept { return m_allAreal; }
 
 private:
     void add(const Entry& entry, float weight);
@@ -78,7 +76,6 @@ private:
     // Per Embree geometry: the first entry of an emissive object's triangles (entry = base + primId),
     // the entry of an area light, or kNoIndex.
     std::vector<uint32_t> m_entryOfGeometry;
-    bool m_allAreal = true;
 };
 
 inline const LightSampler::Entry& LightSampler::choose(float uSelect) const noexcept {

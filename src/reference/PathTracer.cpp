@@ -59,6 +59,11 @@ constexpr uint64_t kMinPathsPerPass = 1u << 20;
 // A tile's paths run 16 at a time, as the lanes of one Embree packet (rtcIntersect16, rtcOccluded16)
 // and of the vectorised kernel.
 constexpr int kLanesOfPacket = lambert::kLanes;
+static_assert(static_cast<int>(LightSampler::Kind::Point) == lambert::kPointLight &&
+              static_cast<int>(LightSampler::Kind::Spot) == lambert::kSpotLight &&
+              static_cast<int>(LightSampler::Kind::Directional) == lambert::kDirectionalLight &&
+              static_cast<int>(LightSampler::Kind::Area) == lambert::kAreaLight &&
+              static_cast<int>(LightSampler::Kind::Triangle) == lambert::kTriangleLight);
 static_assert(kLanesOfPacket == 16, "the Embree packet calls are the 16-wide ones");
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -162,7 +167,7 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
       m_camera(scene.camera.at(m_time), settings.width, settings.height),
       m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
                                                                           : settings.bounces + 1),
-      m_vectorized(settings.vectorized && m_lights.allAreal()) {
+      m_vectorized(settings.vectorized) {
     m_shading.resize(m_embree.geometries().size());
     for (size_t i = 0; i < m_shading.size(); ++i) {
         const SceneGeometry& g = m_embree.geometries()[i];
@@ -179,34 +184,16 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
             s.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
             s.lambertian = m.specularF0 == 0.0f && m.metallic == 0.0f;
         }
-        s.flatUntextured = g.normals.empty() && s.texture == nullptr;
         s.emissive = maxComponent(s.emitted) > 0.0f;
     }
-    // One record per triangle with all the kernel reads of its hits, so loading a lane is one lookup.
-    m_kernelTriangleBase.resize(m_shading.size());
+    // Which geometries' hits the kernel may shade (the triangles' own data is read from Embree's
+    // copy, as surface() reads it: a per-triangle table measured 10 % slower on 100K triangles).
+    m_kernelShades.resize(m_shading.size());
+    m_kernelShadesDiffuseOnly.resize(m_shading.size());
     for (size_t gi = 0; gi < m_shading.size(); ++gi) {
-        const SceneGeometry& g = m_embree.geometries()[gi];
         const Shading& sh = m_shading[gi];
-        m_kernelTriangleBase[gi] = static_cast<uint32_t>(m_kernelTriangles.size());
-        for (size_t t = 0; t < g.triangles.size(); ++t) {
-            KernelTriangle k;
-            const glm::uvec3 tri = g.triangles[t];
-            k.p0 = g.positions[tri.x];
-            k.p1 = g.positions[tri.y];
-            k.p2 = g.positions[tri.z];
-            k.normal = g.faceNormals[t];
-            k.albedo = sh.diffuseAlbedo;
-            k.emitted = sh.emitted;
-            const LightSampler::Entry* emitter = m_lights.emitter(static_cast<uint32_t>(gi), static_cast<uint32_t>(t));
-            k.emitterPmf = emitter ? emitter->pmf : 0.0f;
-            k.emitterArea = emitter ? emitter->area : 0.0f;
-            k.emissive = sh.emissive;
-            k.twoSided = sh.twoSided;
-            k.absorber = sh.absorber;
-            k.kernelAlways = sh.flatUntextured && (sh.lambertian || sh.absorber);
-            k.kernelDiffuseOnly = sh.flatUntextured && m_settings.diffuseOnly;
-            m_kernelTriangles.push_back(k);
-        }
+        m_kernelShades[gi] = sh.texture == nullptr && (sh.lambertian || sh.absorber);
+        m_kernelShadesDiffuseOnly[gi] = sh.texture == nullptr && m_settings.diffuseOnly;
     }
 }
 
@@ -344,23 +331,35 @@ void PathTracer::setLaneState(lambert::Lanes& L, int i, const PathState& path) {
 }
 
 bool PathTracer::loadKernelLane(lambert::Lanes& L, int i) const {
-    const KernelTriangle& k = m_kernelTriangles[m_kernelTriangleBase[L.geomId[i]] + L.primId[i]];
+    const uint32_t geomId = L.geomId[i], primId = L.primId[i];
     const int reflections = L.reflections[i];
-    if (!(k.kernelAlways || (k.kernelDiffuseOnly && reflections + 1 >= 2))) return false;
+    if (!(m_kernelShades[geomId] || (m_kernelShadesDiffuseOnly[geomId] && reflections + 1 >= 2))) return false;
+    const SceneGeometry& g = m_embree.geometry(geomId);
+    const Shading& sh = m_shading[geomId];
+    const glm::vec3 ng = g.faceNormals[primId];
     // A camera ray crossing a culled back face is traced on by scatter().
-    if (reflections == 0 && !k.twoSided && !(glm::dot(L.direction.at(i), k.normal) < 0.0f)) return false;
+    if (reflections == 0 && !sh.twoSided && !(glm::dot(L.direction.at(i), ng) < 0.0f)) return false;
+    const glm::uvec3 tri = g.triangles[primId];
     L.in[i] = 1;
-    L.p0.set(i, k.p0);
-    L.p1.set(i, k.p1);
-    L.p2.set(i, k.p2);
-    L.faceNormal.set(i, k.normal);
-    L.albedo.set(i, k.albedo);
-    L.emitted.set(i, k.emitted);
-    L.emitterPmf[i] = k.emitterPmf;
-    L.emitterArea[i] = k.emitterArea;
-    L.emissive[i] = k.emissive;
-    L.twoSided[i] = k.twoSided;
-    L.absorber[i] = k.absorber;
+    L.p0.set(i, g.positions[tri.x]);
+    L.p1.set(i, g.positions[tri.y]);
+    L.p2.set(i, g.positions[tri.z]);
+    L.faceNormal.set(i, ng);
+    const bool smooth = !g.normals.empty();
+    L.smooth[i] = smooth;
+    if (smooth) {
+        L.n0.set(i, g.normals[tri.x]);
+        L.n1.set(i, g.normals[tri.y]);
+        L.n2.set(i, g.normals[tri.z]);
+    }
+    L.albedo.set(i, sh.diffuseAlbedo);
+    L.emitted.set(i, sh.emitted);
+    const LightSampler::Entry* emitter = sh.emissive ? m_lights.emitter(geomId, primId) : nullptr;
+    L.emitterPmf[i] = emitter ? emitter->pmf : 0.0f;
+    L.emitterArea[i] = emitter ? emitter->area : 0.0f;
+    L.emissive[i] = sh.emissive;
+    L.twoSided[i] = sh.twoSided;
+    L.absorber[i] = sh.absorber;
     return true;
 }
 
@@ -399,7 +398,9 @@ void PathTracer::shadeLanes(lambert::Lanes& L, const int* active) const {
         L.lightEmitted.set(i, e.emitted);
         L.lightArea[i] = e.area;
         L.lightPmf[i] = e.pmf;
-        L.lightTriangle[i] = e.kind == LightSampler::Kind::Triangle;
+        L.lightCosCutoff[i] = e.cosCutoff;
+        L.lightExponent[i] = e.exponent;
+        L.lightKind[i] = static_cast<int32_t>(e.kind);
         L.lightTwoSided[i] = e.twoSided;
     }
     lambert::reflect(L, kRouletteStartReflections);

@@ -13,7 +13,7 @@
 // nothing. From behind, an area light is not there at all.
 //
 // Sixteen paths run side by side: each step traces all their rays as one Embree packet, then
-// shades the hits on flat, untextured Lambertian surfaces with the SIMD kernel of LambertKernel.h
+// shades the hits on untextured Lambertian surfaces with the SIMD kernel of LambertKernel.h
 // and the others with scatter(); the kernel's results are bit-identical to scatter()'s.
 #include "core/Error.h"
 #include "core/Image.h"
@@ -108,7 +108,6 @@ public:
         bool twoSided = false;
         bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only)
         bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
-        bool flatUntextured = false;  // no vertex normals, no texture: the vectorised kernel may shade it
     };
 
 private:
@@ -157,14 +156,6 @@ private:
     // for the others. Leaves stop, and the shadow ray, in the lanes.
     void shadeLanes(lambert::Lanes& lanes, const int* active) const;
 
-    // What the kernel reads of a hit triangle, gathered once (PathTracer.cpp).
-    struct KernelTriangle {
-        glm::vec3 p0, p1, p2, normal, albedo, emitted;
-        float emitterPmf = 0.0f, emitterArea = 0.0f;
-        bool emissive = false, twoSided = false, absorber = false;
-        bool kernelAlways = false;       // flat, untextured, Lambertian (or an area light)
-        bool kernelDiffuseOnly = false;  // flat and untextured, and --diffuse-only after the first vertex
-    };
 
     PathTracerSettings m_settings;
     float m_time;
@@ -174,8 +165,9 @@ private:
     std::vector<Shading> m_shading;
     int m_maxReflections;
     bool m_vectorized;
-    std::vector<KernelTriangle> m_kernelTriangles;
-    std::vector<uint32_t> m_kernelTriangleBase;  // per Embree geometry: index of its first triangle
+    // Per Embree geometry: the kernel shades its hits (untextured Lambert, or an area light's
+    // rectangle), or does so after the first vertex under --diffuse-only.
+    std::vector<uint8_t> m_kernelShades, m_kernelShadesDiffuseOnly;
     double m_buildSeconds = 0.0;
 };
 

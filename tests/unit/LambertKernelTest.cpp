@@ -4,6 +4,7 @@
 #include "reference/LambertKernel.h"
 #include "reference/Rng.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -15,8 +16,8 @@ namespace {
 using namespace bounce;
 using namespace bounce::lambert;
 
-// Lanes as PathTracer would load them: hits on triangles facing both ways, some emitting, some
-// absorbing, paths at several depths, lights that are rectangles or triangles.
+// Lanes as PathTracer would load them: hits on flat and smooth triangles facing both ways, some
+// emitting, some absorbing, paths at several depths, every kind of light.
 std::unique_ptr<Lanes> sampleLanes() {
     auto L = std::make_unique<Lanes>();
     Rng rng(7, 0, 0);
@@ -36,6 +37,10 @@ std::unique_ptr<Lanes> sampleLanes() {
         L->p1.set(i, glm::vec3(1.0f + u(), 0.0f, u()));
         L->p2.set(i, glm::vec3(u(), 0.0f, 1.0f + u()));
         L->faceNormal.set(i, glm::vec3(0.0f, i % 5 == 0 ? -1.0f : 1.0f, 0.0f));
+        L->smooth[i] = i % 3 == 1;  // interpolated vertex normals, tilted off the face
+        L->n0.set(i, glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f)));
+        L->n1.set(i, glm::normalize(glm::vec3(0.0f, 1.0f, 0.4f)));
+        L->n2.set(i, glm::normalize(glm::vec3(-0.2f, 1.0f, -0.1f)));
         L->albedo.set(i, glm::vec3(u(), u(), u()));
         L->emitted.set(i, i % 3 == 0 ? glm::vec3(2.0f, 1.0f, 0.5f) : glm::vec3(0.0f));
         L->emitterPmf[i] = i % 3 == 0 ? 0.25f : 0.0f;
@@ -50,7 +55,9 @@ std::unique_ptr<Lanes> sampleLanes() {
         L->lightEmitted.set(i, glm::vec3(5.0f, 5.0f, 4.0f));
         L->lightArea[i] = i % 2 ? 0.125f : 0.25f;
         L->lightPmf[i] = 0.5f;
-        L->lightTriangle[i] = i % 2;
+        L->lightKind[i] = i % 5;  // every kind: point, spot, directional, rectangle, triangle
+        L->lightCosCutoff[i] = 0.5f;
+        L->lightExponent[i] = 3.0f;
         L->lightTwoSided[i] = i % 4 == 1;
         L->stop[i] = 1;  // scalar lanes' values, which the kernel must leave alone
         L->shadowTMax[i] = 7.0f;

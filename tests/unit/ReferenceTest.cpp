@@ -525,10 +525,17 @@ TEST(ReferenceDeterminism, SameSeedSameImageWhateverTheThreads) {
 // The vectorised kernel performs scatter()'s floating-point operations in the same order, so with
 // the same random numbers the images must be bit-identical, in every scope. The built-in
 // cornell-box-area has area-light rectangles, one-sided walls and roulette; the furnace room's
-// lights are emissive triangles (MIS on both strategies).
+// lights are emissive triangles (MIS on both strategies); cornell-box, two-rooms and atrium bring a
+// spot, a point and a directional light, and atrium's columns have vertex normals.
 TEST(ReferenceDeterminism, VectorisedKernelEqualsScalarCode) {
     auto loaded = loadScene("cornell-box-area");
     ASSERT_TRUE(loaded.ok());
+    auto spot = loadScene("cornell-box");  // a spot light
+    ASSERT_TRUE(spot.ok());
+    auto point = loadScene("two-rooms");  // a point light
+    ASSERT_TRUE(point.ok());
+    auto sun = loadScene("atrium", {{"triangles", "1916"}});  // a directional light, smooth columns
+    ASSERT_TRUE(sun.ok());
     struct Case {
         const char* name;
         const Scene* scene;
@@ -540,7 +547,10 @@ TEST(ReferenceDeterminism, VectorisedKernelEqualsScalarCode) {
                           Case{"cornell direct", &*loaded, 0, false, false},
                           Case{"cornell indirect", &*loaded, 3, true, true},
                           Case{"furnace", &furnace, PathTracerSettings::kUnbounded, false, false},
-                          Case{"furnace indirect", &furnace, 2, true, false}}) {
+                          Case{"furnace indirect", &furnace, 2, true, false},
+                          Case{"spot", &*spot, PathTracerSettings::kUnbounded, false, false},
+                          Case{"point", &*point, 2, false, false},
+                          Case{"directional, smooth", &*sun, PathTracerSettings::kUnbounded, false, false}}) {
         PathTracerSettings s;
         s.width = 37;  // not a multiple of the packet size: partial packets
         s.height = 29;
