@@ -140,11 +140,15 @@ void hitLanes(Lanes& L, int maxReflections, bool indirectOnly) noexcept {
     const F3 p = w * load3(L.p0) + u * load3(L.p1) + v * load3(L.p2);
     // EmbreeScene::surface's shading normal: the interpolated vertex normal, normalised and turned to
     // the face's side, on smooth meshes; the face normal otherwise.
-    const F3 nInterpolated = w * load3(L.n0) + u * load3(L.n1) + v * load3(L.n2);
-    const F nLength = sqrtOf(dot(nInterpolated, nInterpolated));
-    const F3 nUnit = nInterpolated / nLength;
-    const F3 nFaced = select3(dot(nUnit, ngFront) < 0.0f, -nUnit, nUnit);
-    const F3 shadingFront = select3(loadMask(L.smooth) & (nLength > 0.0f), nFaced, ngFront);
+    F3 shadingFront = ngFront;
+    const I smooth = in & loadMask(L.smooth);
+    if (any(smooth)) {  // skipped for flat meshes: the result would be ngFront in every lane
+        const F3 nInterpolated = w * load3(L.n0) + u * load3(L.n1) + v * load3(L.n2);
+        const F nLength = sqrtOf(dot(nInterpolated, nInterpolated));
+        const F3 nUnit = nInterpolated / nLength;
+        const F3 nFaced = select3(dot(nUnit, ngFront) < 0.0f, -nUnit, nUnit);
+        shadingFront = select3(smooth & (nLength > 0.0f), nFaced, ngFront);
+    }
     const F cosIn = dot(dir, ngFront);
     const I front = cosIn < 0.0f;
     const I seen = front | loadMask(L.twoSided);
@@ -219,24 +223,30 @@ void reflectLanes(Lanes& L, int rouletteStartReflections) noexcept {
     const I arealSampled = (d2 > 0.0f) & (lightFront | loadMask(L.lightTwoSided)) & (cosLight > 0.0f);
     const F3 arealPoint = offsetRayOrigin(y, select3(lightFront, lightNormal, -lightNormal));
     const F3 arealIncident = emittedL * (lightArea * cosLight * invD * invD / lightPmf);
-    // Spot lights: inside the cone, intensity times cos^exponent (pow lane by lane, as libm has it).
-    const F cosAlpha = -dot(wi, lightNormal);
-    const I inCone = (cosAlpha > loadF(L.lightCosCutoff)) & ~(cosAlpha <= 0.0f);
-    alignas(64) float falloff[kLanes];
-    alignas(64) float cosAlphas[kLanes], exponents[kLanes];
-    alignas(64) int32_t powLanes[kLanes];
-    __builtin_memcpy(cosAlphas, &cosAlpha, sizeof cosAlphas);
-    __builtin_memcpy(exponents, L.lightExponent, sizeof exponents);
-    const I needsPow = in & spot & inCone;
-    __builtin_memcpy(powLanes, &needsPow, sizeof powLanes);
-    for (int i = 0; i < kLanes; ++i) falloff[i] = powLanes[i] ? __builtin_powf(cosAlphas[i], exponents[i]) : 1.0f;
-    const F3 intensity = select3(spot, emittedL * load<F>(falloff), emittedL);
-    const I pointSampled = (d2 > 0.0f) & (~spot | inCone);
-    const F3 pointIncident = intensity * (1.0f / (d2 * lightPmf));
-    const F3 directionalIncident = emittedL * (1.0f / lightPmf);
-
-    const I sampled = selectI(areal, arealSampled, selectI(directional, kAllLanes, pointSampled)) & (dot(wi, ng) > 0.0f);
-    const F3 incident = select3(areal, arealIncident, select3(directional, directionalIncident, pointIncident));
+    I sampled = arealSampled;
+    F3 incident = arealIncident;
+    if (any(in & ~areal)) {  // delta lights; skipped when every lane chose a rectangle or triangle
+        // Spot lights: inside the cone, intensity times cos^exponent (pow lane by lane, as libm has it).
+        const F cosAlpha = -dot(wi, lightNormal);
+        const I inCone = (cosAlpha > loadF(L.lightCosCutoff)) & ~(cosAlpha <= 0.0f);
+        F3 intensity = emittedL;
+        const I needsPow = in & spot & inCone;
+        if (any(needsPow)) {
+            alignas(64) float falloff[kLanes], cosAlphas[kLanes];
+            alignas(64) int32_t powLanes[kLanes];
+            __builtin_memcpy(cosAlphas, &cosAlpha, sizeof cosAlphas);
+            __builtin_memcpy(powLanes, &needsPow, sizeof powLanes);
+            for (int i = 0; i < kLanes; ++i)
+                falloff[i] = powLanes[i] ? __builtin_powf(cosAlphas[i], L.lightExponent[i]) : 1.0f;
+            intensity = select3(spot, emittedL * load<F>(falloff), emittedL);
+        }
+        const I pointSampled = (d2 > 0.0f) & (~spot | inCone);
+        const F3 pointIncident = intensity * (1.0f / (d2 * lightPmf));
+        const F3 directionalIncident = emittedL * (1.0f / lightPmf);
+        sampled = selectI(areal, arealSampled, selectI(directional, kAllLanes, pointSampled));
+        incident = select3(areal, arealIncident, select3(directional, directionalIncident, pointIncident));
+    }
+    sampled &= dot(wi, ng) > 0.0f;
     const F lightPdf = select(areal, lightPmf * d2 / (lightArea * cosLight), splat(0.0f));  // 0: a delta light
 
     // The Lambert BRDF and its cosine-weighted pdf, and the power heuristic; the shadow ray ends at

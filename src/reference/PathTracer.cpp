@@ -186,14 +186,29 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
         }
         s.emissive = maxComponent(s.emitted) > 0.0f;
     }
-    // Which geometries' hits the kernel may shade (the triangles' own data is read from Embree's
-    // copy, as surface() reads it: a per-triangle table measured 10 % slower on 100K triangles).
-    m_kernelShades.resize(m_shading.size());
-    m_kernelShadesDiffuseOnly.resize(m_shading.size());
+    // What the kernel needs of each geometry, in one place (it reads the triangles themselves from
+    // Embree's copy, as surface() does: a per-triangle table was 10 % slower on atrium's 100K
+    // triangles, from cache misses).
+    m_kernelGeometries.resize(m_shading.size());
     for (size_t gi = 0; gi < m_shading.size(); ++gi) {
+        const SceneGeometry& g = m_embree.geometries()[gi];
         const Shading& sh = m_shading[gi];
-        m_kernelShades[gi] = sh.texture == nullptr && (sh.lambertian || sh.absorber);
-        m_kernelShadesDiffuseOnly[gi] = sh.texture == nullptr && m_settings.diffuseOnly;
+        KernelGeometry& k = m_kernelGeometries[gi];
+        k.triangles = g.triangles.data();
+        k.positions = g.positions.data();
+        k.faceNormals = g.faceNormals.data();
+        k.normals = g.normals.empty() ? nullptr : g.normals.data();
+        k.albedo = sh.diffuseAlbedo;
+        k.emitted = sh.emitted;
+        if (sh.emissive) {
+            k.emitter = m_lights.emitter(static_cast<uint32_t>(gi), 0);
+            k.emitterPerTriangle = k.emitter && k.emitter->kind == LightSampler::Kind::Triangle;
+        }
+        k.shades = sh.texture == nullptr && (sh.lambertian || sh.absorber);
+        k.shadesDiffuseOnly = sh.texture == nullptr && m_settings.diffuseOnly;
+        k.emissive = sh.emissive;
+        k.twoSided = sh.twoSided;
+        k.absorber = sh.absorber;
     }
 }
 
@@ -331,35 +346,33 @@ void PathTracer::setLaneState(lambert::Lanes& L, int i, const PathState& path) {
 }
 
 bool PathTracer::loadKernelLane(lambert::Lanes& L, int i) const {
-    const uint32_t geomId = L.geomId[i], primId = L.primId[i];
+    const KernelGeometry& k = m_kernelGeometries[L.geomId[i]];
+    const uint32_t primId = L.primId[i];
     const int reflections = L.reflections[i];
-    if (!(m_kernelShades[geomId] || (m_kernelShadesDiffuseOnly[geomId] && reflections + 1 >= 2))) return false;
-    const SceneGeometry& g = m_embree.geometry(geomId);
-    const Shading& sh = m_shading[geomId];
-    const glm::vec3 ng = g.faceNormals[primId];
+    if (!(k.shades || (k.shadesDiffuseOnly && reflections + 1 >= 2))) return false;
+    const glm::vec3 ng = k.faceNormals[primId];
     // A camera ray crossing a culled back face is traced on by scatter().
-    if (reflections == 0 && !sh.twoSided && !(glm::dot(L.direction.at(i), ng) < 0.0f)) return false;
-    const glm::uvec3 tri = g.triangles[primId];
+    if (reflections == 0 && !k.twoSided && !(glm::dot(L.direction.at(i), ng) < 0.0f)) return false;
+    const glm::uvec3 tri = k.triangles[primId];
     L.in[i] = 1;
-    L.p0.set(i, g.positions[tri.x]);
-    L.p1.set(i, g.positions[tri.y]);
-    L.p2.set(i, g.positions[tri.z]);
+    L.p0.set(i, k.positions[tri.x]);
+    L.p1.set(i, k.positions[tri.y]);
+    L.p2.set(i, k.positions[tri.z]);
     L.faceNormal.set(i, ng);
-    const bool smooth = !g.normals.empty();
-    L.smooth[i] = smooth;
-    if (smooth) {
-        L.n0.set(i, g.normals[tri.x]);
-        L.n1.set(i, g.normals[tri.y]);
-        L.n2.set(i, g.normals[tri.z]);
+    L.smooth[i] = k.normals != nullptr;
+    if (k.normals) {
+        L.n0.set(i, k.normals[tri.x]);
+        L.n1.set(i, k.normals[tri.y]);
+        L.n2.set(i, k.normals[tri.z]);
     }
-    L.albedo.set(i, sh.diffuseAlbedo);
-    L.emitted.set(i, sh.emitted);
-    const LightSampler::Entry* emitter = sh.emissive ? m_lights.emitter(geomId, primId) : nullptr;
+    L.albedo.set(i, k.albedo);
+    L.emitted.set(i, k.emitted);
+    const LightSampler::Entry* emitter = k.emitterPerTriangle ? k.emitter + primId : k.emitter;
     L.emitterPmf[i] = emitter ? emitter->pmf : 0.0f;
     L.emitterArea[i] = emitter ? emitter->area : 0.0f;
-    L.emissive[i] = sh.emissive;
-    L.twoSided[i] = sh.twoSided;
-    L.absorber[i] = sh.absorber;
+    L.emissive[i] = k.emissive;
+    L.twoSided[i] = k.twoSided;
+    L.absorber[i] = k.absorber;
     return true;
 }
 
@@ -449,26 +462,28 @@ void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_
     // together, and a lane whose path ends takes the next path of the queue at once, so the packet
     // stays full until the tile's last paths. A pixel's samples finish in an order fixed by the
     // tile alone, so the sums are bit-identical for any thread count.
-    const int tileWidth = x1 - x0;
-    const auto tilePixels = static_cast<uint64_t>(tileWidth) * static_cast<uint64_t>(y1 - y0);
-    const uint64_t queueEnd = tilePixels * (s1 - s0);
-    uint64_t queued = 0;
+    // The queue's head: sample `headSample` of pixel (headX, headY).
+    uint32_t headSample = s0;
+    int headX = x0, headY = y0;
     const auto startPath = [&](int lane) {
-        if (queued == queueEnd) return false;
-        const uint64_t k = queued++;
-        const auto sample = static_cast<uint32_t>(s0 + k / tilePixels);
-        const auto j = static_cast<int>(k % tilePixels);
-        const int x = x0 + j % tileWidth, y = y0 + j / tileWidth;
-        pixels[lane] = static_cast<size_t>(y) * width + static_cast<size_t>(x);
-        Rng rng(m_settings.seed, pixels[lane], sample);
+        if (headSample == s1) return false;
+        pixels[lane] = static_cast<size_t>(headY) * width + static_cast<size_t>(headX);
+        Rng rng(m_settings.seed, pixels[lane], headSample);
         const float jx = rng.next(), jy = rng.next();
-        const CameraRay r = m_camera.generate(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
+        const CameraRay r = m_camera.generate(static_cast<float>(headX) + jx, static_cast<float>(headY) + jy);
         PathState path;
         path.rng = rng;
         path.origin = r.origin;
         path.direction = r.direction;
         path.tMax = r.tMax;
         setLaneState(L, lane, path);
+        if (++headX == x1) {
+            headX = x0;
+            if (++headY == y1) {
+                headY = y0;
+                ++headSample;
+            }
+        }
         return true;
     };
     int live = 0;

@@ -46,7 +46,7 @@ struct PathTracerSettings {
     double timeLimitSeconds = 0.0;
     int threads = 0;                // 0: every hardware thread
     uint32_t frame = 0;             // render the scene at time scene.timeOfFrame(frame)
-    // Shade flat, untextured Lambertian hits lane-parallel (SIMD). The image is bit-identical
+    // Shade untextured Lambertian hits lane-parallel (SIMD). The image is bit-identical
     // either way; false keeps every lane on the scalar code (tests compare the two).
     bool vectorized = true;
 
@@ -147,6 +147,20 @@ private:
     // `shadow` for the caller to trace), and the next direction. Retrace: the camera ray crossed a
     // culled back face and must be traced again from there.
     Step scatter(PathState& path, const HitRecord& hit, ShadowRay& shadow) const;
+    // What loadKernelLane() reads of a geometry: its arrays (owned by m_embree) and its shading.
+    struct KernelGeometry {
+        const glm::uvec3* triangles = nullptr;
+        const glm::vec3* positions = nullptr;
+        const glm::vec3* faceNormals = nullptr;
+        const glm::vec3* normals = nullptr;  // vertex normals, or null for a flat mesh
+        glm::vec3 albedo{0.0f}, emitted{0.0f};
+        const LightSampler::Entry* emitter = nullptr;  // its (first) light entry if it emits
+        bool emitterPerTriangle = false;                // entries emitter + primId
+        bool shades = false;             // the kernel shades its hits: untextured Lambert, or an area light
+        bool shadesDiffuseOnly = false;  // ... after the first vertex, under --diffuse-only
+        bool emissive = false, twoSided = false, absorber = false;
+    };
+
     // Path state of one lane, in and out of the structure-of-arrays form.
     static PathState laneState(const lambert::Lanes& lanes, int i);
     static void setLaneState(lambert::Lanes& lanes, int i, const PathState& path);
@@ -165,9 +179,7 @@ private:
     std::vector<Shading> m_shading;
     int m_maxReflections;
     bool m_vectorized;
-    // Per Embree geometry: the kernel shades its hits (untextured Lambert, or an area light's
-    // rectangle), or does so after the first vertex under --diffuse-only.
-    std::vector<uint8_t> m_kernelShades, m_kernelShadesDiffuseOnly;
+    std::vector<KernelGeometry> m_kernelGeometries;  // per Embree geometry
     double m_buildSeconds = 0.0;
 };
 
