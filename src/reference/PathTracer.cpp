@@ -68,22 +68,6 @@ static_assert(kLanesOfPacket == 16, "the Embree packet calls are the 16-wide one
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-template <class Packet>
-void setPacketRay(Packet& ray, int lane, glm::vec3 origin, glm::vec3 direction, float tMax) {
-    ray.org_x[lane] = origin.x;
-    ray.org_y[lane] = origin.y;
-    ray.org_z[lane] = origin.z;
-    ray.dir_x[lane] = direction.x;
-    ray.dir_y[lane] = direction.y;
-    ray.dir_z[lane] = direction.z;
-    ray.tnear[lane] = 0.0f;
-    ray.tfar[lane] = tMax;
-    ray.time[lane] = 0.0f;
-    ray.mask[lane] = 0xffffffffu;
-    ray.id[lane] = 0;
-    ray.flags[lane] = 0;
-}
-
 }  // namespace
 
 // Embree asks for denormals to be flushed to zero on every thread that traces: without it, rays
@@ -166,8 +150,7 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
       m_lights(scene, m_embree),
       m_camera(scene.camera.at(m_time), settings.width, settings.height),
       m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
-                                                                          : settings.bounces + 1),
-      m_vectorized(settings.vectorized) {
+                                                                          : settings.bounces + 1) {
     m_shading.resize(m_embree.geometries().size());
     for (size_t i = 0; i < m_shading.size(); ++i) {
         const SceneGeometry& g = m_embree.geometries()[i];
@@ -383,7 +366,7 @@ void PathTracer::shadeLanes(lambert::Lanes& L, const int* active) const {
         L.shadowActive[i] = 0;
         L.stop[i] = 1;
         if (!active[i] || L.geomId[i] == RTC_INVALID_GEOMETRY_ID) continue;
-        if (m_vectorized && loadKernelLane(L, i)) {
+        if (m_settings.vectorized && loadKernelLane(L, i)) {
             ++kernelLanes;
             continue;
         }

@@ -178,7 +178,6 @@ private:
     CameraRays m_camera;
     std::vector<Shading> m_shading;
     int m_maxReflections;
-    bool m_vectorized;
     std::vector<KernelGeometry> m_kernelGeometries;  // per Embree geometry
     double m_buildSeconds = 0.0;
 };

@@ -28,6 +28,16 @@ glm::vec3 anyPerpendicular(glm::vec3 d) {
 
 }  // namespace
 
+gl::TextureDesc texelArrayDesc(int size, int layers) {
+    gl::TextureDesc d;
+    d.target = GL_TEXTURE_2D_ARRAY;
+    d.width = d.height = size;
+    d.depth = layers;
+    d.format = GL_RGBA32F;
+    d.minFilter = d.magFilter = GL_NEAREST;
+    return d;
+}
+
 Expected<ReflectiveShadowMap> ReflectiveShadowMap::create() {
     ReflectiveShadowMap r;
     BOUNCE_TRY(r.m_program, gl::Program::build({"nichols.rsm",
@@ -48,12 +58,7 @@ bool ReflectiveShadowMap::render(FrameContext& ctx, int size, bool equalSolidAng
     if (size != m_size || layers != m_layers) {
         m_size = size;
         m_layers = layers;
-        gl::TextureDesc d;
-        d.target = GL_TEXTURE_2D_ARRAY;
-        d.width = d.height = size;
-        d.depth = layers;
-        d.format = GL_RGBA32F;
-        d.minFilter = d.magFilter = GL_NEAREST;
+        gl::TextureDesc d = texelArrayDesc(size, layers);
         m_position = gl::Texture::create("nichols.rsm.position", d);
         m_normal = gl::Texture::create("nichols.rsm.normal", d);
         m_flux = gl::Texture::create("nichols.rsm.flux", d);

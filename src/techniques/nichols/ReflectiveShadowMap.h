@@ -15,6 +15,10 @@
 
 namespace bounce::nichols {
 
+// The layout of the RSM's texel arrays, which the VPL cache (RegularVpls) copies: `size` x `size`
+// texels per layer, RGBA32F, read texel by texel (nearest).
+gl::TextureDesc texelArrayDesc(int size, int layers);
+
 class ReflectiveShadowMap {
 public:
     static Expected<ReflectiveShadowMap> create();

@@ -44,12 +44,7 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
     if (grid != m_grid || rsm.layers() != m_layers) {
         m_grid = grid;
         m_layers = rsm.layers();
-        gl::TextureDesc d;
-        d.target = GL_TEXTURE_2D_ARRAY;
-        d.width = d.height = grid;
-        d.depth = m_layers;
-        d.format = GL_RGBA32F;
-        d.minFilter = d.magFilter = GL_NEAREST;
+        const gl::TextureDesc d = texelArrayDesc(grid, m_layers);
         m_position = gl::Texture::create("nichols.vplCache.position", d);
         m_normal = gl::Texture::create("nichols.vplCache.normal", d);
         m_flux = gl::Texture::create("nichols.vplCache.flux", d);
