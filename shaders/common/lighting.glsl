@@ -35,13 +35,15 @@ vec3 punctualIrradiance(LightGpu L, vec3 x, out vec3 l) {
     return intensity / r2;
 }
 
-float shadowVisibility(LightGpu L, vec3 x, vec3 n) {
+// Visibility of light L from x (normal n) through the given maps (a pass that samples several
+// lights at once binds each light's maps to its own units).
+float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCube, vec3 x, vec3 n) {
     int kind = int(L.edgeU.w + 0.5);
     if (kind == 0) return 1.0;
     vec3 p = x + n * L.edgeV.w;  // normal-offset bias (metres)
     if (kind == 2) {
         vec3 d = p - L.shadowOrigin.xyz;
-        float stored = texture(s_shadowCube, d).r * L.shadowParams.x;
+        float stored = texture(mapCube, d).r * L.shadowParams.x;
         return length(d) <= stored ? 1.0 : 0.0;
     }
     vec4 c = L.shadowClipFromWorld * vec4(p, 1.0);
@@ -52,10 +54,12 @@ float shadowVisibility(LightGpu L, vec3 x, vec3 n) {
     float texel = 1.0 / L.shadowParams.y;
     float sum = 0.0;
     for (int j = -radius; j <= radius; ++j)
-        for (int i = -radius; i <= radius; ++i) sum += texture(s_shadow, vec3(uvz.xy + vec2(i, j) * texel, uvz.z));
+        for (int i = -radius; i <= radius; ++i) sum += texture(map2D, vec3(uvz.xy + vec2(i, j) * texel, uvz.z));
     float taps = float((2 * radius + 1) * (2 * radius + 1));
     return sum / taps;
 }
+
+float shadowVisibility(LightGpu L, vec3 x, vec3 n) { return shadowVisibilityFrom(L, s_shadow, s_shadowCube, x, n); }
 
 // Irradiance at x (normal n) from the one-sided rectangle, unshadowed.
 vec3 areaIrradiance(LightGpu L, vec3 x, vec3 n) {

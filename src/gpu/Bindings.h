@@ -33,6 +33,13 @@
 #define BINDING_TEX_TECH1 13
 #define BINDING_TEX_TECH2 14
 #define BINDING_TEX_TECH3 15
+// Voxel cone tracing (techniques/vct) samples up to 13 volumes at once and its voxelizer up to four
+// lights' shadow maps; GL 4.5 guarantees 32 texture units per stage (16 per fragment stage in the
+// minimum, every driver bounce targets has 32).
+#define BINDING_TEX_VCT_ALPHA 16     // isotropic RGBA8 volume: colour, and opacity for every format
+#define BINDING_TEX_VCT_VOLUME0 17   // aniso faces 17..22, SH-F32 coefficients 17..28, SH-U8 17..19
+#define BINDING_TEX_VCT_SHADOW2D0 24 // voxelizer: light k's 2D shadow map at 24 + k (k < 4)
+#define BINDING_TEX_VCT_SHADOWCUBE0 28 // voxelizer: light k's cube distance map at 28 + k
 
 // Image units
 #define BINDING_IMG0 0

@@ -78,6 +78,17 @@ void LightSet::bind(size_t i) const {
     (e.gpu.edgeU.w == k2D ? e.depth : m_dummy2D).bind(BINDING_TEX_SHADOW);
 }
 
+void LightSet::bindShadowMaps(size_t i, unsigned unit2D, unsigned unitCube) const {
+    const Entry& e = m_entries[i];
+    (e.gpu.edgeU.w == kCube ? e.distance : m_dummyCube).bind(unitCube);
+    (e.gpu.edgeU.w == k2D ? e.depth : m_dummy2D).bind(unit2D);
+}
+
+void LightSet::bindDummyShadowMaps(unsigned unit2D, unsigned unitCube) const {
+    m_dummyCube.bind(unitCube);
+    m_dummy2D.bind(unit2D);
+}
+
 void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
     const SceneGpu& scene = drawer.scene();
     const std::vector<Light>& lights = scene.lights();

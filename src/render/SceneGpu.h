@@ -34,6 +34,9 @@ public:
     bool hasDynamicObjects() const { return m_commandCount[static_cast<int>(DrawFilter::Dynamic)] > 0; }
 
     const gl::Buffer& objects() const { return m_objects; }
+    // All meshes' vertices (32 bytes each: position, normal, uv; SceneGpu.cpp's Vertex), for passes
+    // that pull vertices themselves.
+    const gl::Buffer& vertices() const { return m_vertices; }
     const gl::Buffer& materials() const { return m_materials; }
     const gl::Texture& baseColorTextures() const { return m_textures; }
 

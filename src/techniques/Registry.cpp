@@ -8,6 +8,7 @@
 #include "techniques/multires_splat/MultiresSplatTechnique.h"
 #include "techniques/rsm/RsmTechnique.h"
 #include "techniques/rsm_splat/RsmSplatTechnique.h"
+#include "techniques/vct/VctTechnique.h"
 
 #include <fmt/ranges.h>
 
@@ -23,6 +24,8 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         {"rsm-splat", "reflective shadow map splatting: full-screen, fixed-radius or fragment-matched splats (Nichols 2010 baseline)", "Dachsbacher & Stamminger 2005; Nichols 2010 thesis fig. 4.8", [] { return std::make_unique<RsmSplatTechnique>(); }},
         {"isr", "image-space radiosity: stencilled multiresolution gather, light-space VPL clusters (Nichols 2010 ch. 4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<IsrTechnique>(); }},
         {"multires-splat", "multiresolution splatting: subsplat refinement by geometry shader + transform feedback (Nichols 2010 ch. 3)", "Nichols 2010 thesis ch. 3; Nichols & Wyman, I3D 2009", [] { return std::make_unique<MultiresSplatTechnique>(); }},
+        {"vct", "voxel cone tracing: hybrid voxelization, isotropic / anisotropic / spherical-harmonics radiance, 60-degree cones (Rauwendaal 2013)",
+         "Rauwendaal 2013 PhD thesis; Rauwendaal & Bailey, JCGT 2013", [] { return std::make_unique<VctTechnique>(); }},
         {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;

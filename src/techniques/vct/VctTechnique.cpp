@@ -1,0 +1,696 @@
+// `vct` — voxel cone tracing with hybrid voxelization and spherical-harmonics radiance
+// (Rauwendaal 2013, PhD thesis, Oregon State University; the voxelizer of Rauwendaal & Bailey 2013).
+//
+// Every frame, with no precomputation (dynamic objects and lights need nothing else):
+//  1. "voxelize": the scene is voxelized into a dense N^3 grid around the scene bounds (or a user
+//     box) by one of three voxelizers sharing the exact triangle/voxel overlap test of section 4.1
+//     (shaders/techniques/vct/overlap.glsl, 6- or 26-separating):
+//       triangle  — triangle-parallel: one geometry-shader invocation per triangle loops over its
+//                   voxels (4.1.1);
+//       fragment  — fragment-parallel: the geometry shader swizzles to the dominant plane and dilates
+//                   the triangle (Hertel), the fragment shader loops over the column's depth (4.1.2);
+//       hybrid    — pass 1 voxelizes triangles whose projected area is at most `cutoff` voxels^2 in
+//                   the geometry shader and appends the others to an index buffer; pass 2 draws those
+//                   indirectly through the fragment-parallel stages (4.1.3).
+//     Each voxel receives the direct light reflected by its surface (Eq. 7.1, radiometrically
+//     L = rho / pi * E * V with the light set's shadow maps; inject.glsl), written as isotropic
+//     RGBA8 through an r32ui view (imageAtomicMax or the running average of Fig. B.1) and, for
+//     SH-F32, added to the DC coefficients with float atomics. Level 0 is isotropic in every format,
+//     as in the thesis (directional initialisation darkened the hierarchy, 5.1.2/5.1.3). With
+//     `binary` only a single-component occupancy volume is written (the Table 4.1 benchmark mode).
+//     Active voxels of level 0 go to a list (mutex volume + atomic append, 5.4).
+//  2. "post-voxelize": opacity 1 for written voxels (average mode), SH-F32 normalisation (sum /
+//     count), SH-U8 transfer from the isotropic result; the anisotropic faces copy level 0.
+//  3. "mipmap": level by level, the opacity-weighted isotropic mip (every format: its opacity is the
+//     SH formats' alpha volume), then the format's own filter: directional anisotropic, or the SH
+//     face projection of Eq. 5.9 with the division by pi the thesis omits. Sparse mode processes only
+//     the active-voxel lists (point lists drawn indirectly, rasterizer off); dense mode every voxel.
+//  4. "diffuse-ao": six 60-degree cones per pixel (Eq. 6.8/6.9), generic (Fig. B.4) or specialised
+//     (Fig. B.5) tracer; "specular": one cone about the mirror direction, aperture from roughness.
+// The direct light stays the shared pass (shadow maps): the thesis's cone-traced shadow (Eq. 6.3)
+// is not used for the pixel direct term here (docs/techniques/vct.md says why).
+//
+// Deviations (all in docs/techniques/vct.md): radiance is HDR, so the 8-bit formats store it
+// divided by a range (auto: the brightest reflected radiance of a fixed set of surface samples under
+// the current lights, times 1.25); SH-U8 is stored as RGBA8_SNORM (the thesis leaves the sign
+// mapping open); llvmpipe/GL without bindless binds the 6 or 12 volumes to ordinary texture units;
+// at most four lights are injected; SH samples are clamped at 0 (not [0, 1]); hybrid pass 2 reads
+// (vertex, object) pairs by vertex pulling, because one mesh can be placed by several objects.
+#include "techniques/vct/VctTechnique.h"
+
+#include "core/Check.h"
+#include "core/Log.h"
+#include "gpu/Bindings.h"
+#include "gpu/Context.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace bounce {
+
+namespace {
+
+// Surface samples of the automatic radiance range: enough that a spot's hot spot on a wall of the
+// Cornell box falls within a few centimetres of one (engineering choice).
+constexpr size_t kRangeSamples = 16384;
+// Headroom over the brightest sample: the hot spot's true peak lies between samples.
+constexpr float kRangeHeadroom = 1.25f;
+// Active-voxel list capacity per level, in multiples of N_l^2: a surface occupies O(N^2) voxels; 32
+// covers six thick walls and interior geometry several times over (engineering choice).
+constexpr uint32_t kListCapacityPerSquare = 32;
+// SH-U8 coefficient range relative to the radiance range: the DC coefficient of radiance L is
+// L / Y00 = 3.545 L, band 1 is bounded by the same (|Y1| <= |Y00| sqrt(3)).
+constexpr float kShU8RangeFactor = 3.6f;
+
+int storageIndex(std::string_view s) {
+    for (size_t i = 0; i < VctTechnique::kStorages.size(); ++i)
+        if (VctTechnique::kStorages[i] == s) return static_cast<int>(i);
+    return 0;
+}
+
+int debugIndex(std::string_view s) {
+    for (size_t i = 0; i < VctTechnique::kDebugViews.size(); ++i)
+        if (VctTechnique::kDebugViews[i] == s) return static_cast<int>(i);
+    return 0;
+}
+
+struct ListHead {
+    uint32_t count, instances, first, baseInstance;
+    uint32_t capacity, pad0, pad1, pad2;
+};
+
+// Irradiance on a surface at x with normal n from light l, unshadowed (the range estimate only).
+float unshadowedIrradiance(const Light& l, glm::vec3 x, glm::vec3 n, bool twoSided) {
+    auto cosine = [&](glm::vec3 toLight) {
+        const float c = glm::dot(n, toLight);
+        return twoSided ? std::abs(c) : std::max(c, 0.0f);
+    };
+    auto maxc = [](glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); };
+    switch (l.type) {
+        case LightType::Directional: return maxc(l.irradiance) * cosine(-glm::normalize(l.direction));
+        case LightType::Area: {
+            const glm::vec3 d = l.position - x;
+            const float r2 = std::max(glm::dot(d, d), 1e-8f);
+            const glm::vec3 w = d / std::sqrt(r2);
+            const float area = glm::length(glm::cross(l.edgeU, l.edgeV));
+            const float cosL = std::max(glm::dot(-w, l.areaNormal()), 0.0f);
+            // Point approximation of the rectangle, capped by the irradiance of an infinite emitter.
+            return std::min(maxc(l.radiance) * area * cosL * cosine(w) / r2, glm::pi<float>() * maxc(l.radiance));
+        }
+        case LightType::Point:
+        case LightType::Spot: {
+            const glm::vec3 d = l.position - x;
+            const float r2 = std::max(glm::dot(d, d), 1e-8f);
+            const glm::vec3 w = d / std::sqrt(r2);
+            float intensity = maxc(l.intensity);
+            if (l.type == LightType::Spot) {
+                const float cosA = glm::dot(-w, glm::normalize(l.direction));
+                if (cosA < std::cos(l.cutoffAngle) || cosA <= 0.0f) return 0.0f;
+                intensity *= std::pow(cosA, l.falloffExponent);
+            }
+            return intensity * cosine(w) / r2;
+        }
+    }
+    return 0.0f;
+}
+
+}  // namespace
+
+void VctTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("voxelizer", m_voxelizer, "hybrid: small triangles in the geometry shader, large ones by an indirect fragment-parallel pass (thesis 4.1.3); triangle: triangle-parallel (4.1.1); fragment: fragment-parallel (4.1.2)", kVoxelizers);
+    v.field("resolution", m_resolution, "voxels per side N (power of two; thesis 128..512, 256 for its GI figures; 64 here for llvmpipe)", 16, 512);
+    v.field("separability", m_separability, "conservative: 26-separating overlap (Fig. 4.4); thin: 6-separating (Fig. 4.5, the Table 4.1 benchmark)", kSeparabilities);
+    v.field("cutoff", m_cutoff, "hybrid classification: projected triangle area on its dominant plane, voxels^2, above which a triangle goes to pass 2 (thesis: 'a few', optimum 0.5..13.7 in Table 4.1)", 0.0f, 1.0e6f);
+    v.field("storage", m_storage, "radiance storage: iso RGBA8 (5.1.1), aniso 6 x RGBA8 (5.1.2), sh-f32 12 x R32F with float atomics, sh-u8 3 x RGBA8 transferred from iso (5.1.3)", kStorages);
+    v.field("atomic", m_atomic, "level-0 write conflicts: average = compare-and-swap running average (Fig. B.1), max = imageAtomicMax", kAtomics);
+    v.field("sparseMip", m_sparseMip, "post-voxelization and mipmapping over active-voxel lists (thesis 5.4); off = every voxel (dense)");
+    v.field("binary", m_binary, "occupancy only (single-component volume, Table 4.1 benchmark mode): no radiance, the indirect output is black unless a debug view shows the occupancy");
+    v.field("tracer", m_tracer, "diffuse cones: specialised 60-degree tracer at integer LODs (Fig. B.5) or the generic tracer (Fig. B.4)", kTracers);
+    v.field("startOffset", m_startOffset, "f of Eqs. 6.1-6.2, voxels: diffuse/AO origins move f along the normal, specular cones start at f|v|/(n.w) (thesis default 1.5)", 0.0f, 16.0f);
+    v.field("maxStartOffset", m_maxStartOffset, "fMax of Eq. 6.2, voxels: cap of the specular start distance at grazing angles (not given by the thesis)", 0.0f, 64.0f);
+    v.field("maxDistance", m_maxDistance, "cone length, metres; 0 = the grid's diagonal", 0.0f, 1.0e6f);
+    v.field("aoDistance", m_aoDistance, "distance after which the AO accessibility is frozen (aoDist), metres; 0 = a quarter of the grid's side", 0.0f, 1.0e6f);
+    v.field("specular", m_specular, "trace one specular cone about the mirror direction for surfaces with F0 > 0 (section 6.5)");
+    v.field("specularApertureScale", m_specularApertureScale, "specular cone aperture = 2 atan(scale * alpha), alpha = roughness^2 (the thesis gives no mapping)", 0.0f, 100.0f);
+    v.field("radianceRange", m_radianceRange, "radiance mapped to 1.0 in the 8-bit formats, W/(m^2 sr); 0 = automatic per frame", 0.0f, 1.0e9f);
+    v.field("debugView", m_debugView, "replace the indirect output: occupancy or radiance of the first voxel on each camera ray at debugLevel, ao (accessibility of the six cones), slice (radiance of z = debugSlice at debugLevel)", kDebugViews);
+    v.field("debugLevel", m_debugLevel, "mip level of the occupancy, radiance and slice views", 0, 9);
+    v.field("debugSlice", m_debugSlice, "z of the slice view, 0..1 across the grid", 0.0f, 1.0f);
+    v.field("boxSide", m_boxSide, "side of a user voxel grid cube, metres; 0 = a cube around the scene's bounds at t = 0 with a one-voxel margin", 0.0f, 1.0e6f);
+    v.field("boxCentreX", m_boxCentre.x, "centre of the user grid cube (with boxSide > 0), metres", -1.0e6f, 1.0e6f);
+    v.field("boxCentreY", m_boxCentre.y, "centre of the user grid cube, metres", -1.0e6f, 1.0e6f);
+    v.field("boxCentreZ", m_boxCentre.z, "centre of the user grid cube, metres", -1.0e6f, 1.0e6f);
+    v.field("memoryBudgetMiB", m_memoryBudgetMiB, "largest total size of the voxel volumes, MiB (setup fails above it)", 1, 1 << 20);
+}
+
+int VctTechnique::storageId() const { return storageIndex(m_storage); }
+
+double VctTechnique::radianceBytesPerVoxel(std::string_view storage) {
+    switch (storageIndex(storage)) {
+        case VCT_STORAGE_ISO: return 4.0;
+        case VCT_STORAGE_ANISO: return 24.0;
+        case VCT_STORAGE_SH_F32: return 48.0;
+        case VCT_STORAGE_SH_U8: return 12.0;
+    }
+    return 0.0;
+}
+
+Expected<void> VctTechnique::buildPrograms() {
+    const int storage = storageId();
+    const std::string conservative = m_separability == "conservative" ? "1" : "0";
+    std::vector<std::pair<std::string, std::string>> defines = {{"VCT_STORAGE", std::to_string(storage)},
+                                                                {"VCT_CONSERVATIVE", conservative}};
+    auto with = [&](std::vector<std::pair<std::string, std::string>> extra) {
+        auto d = defines;
+        d.insert(d.end(), extra.begin(), extra.end());
+        return d;
+    };
+    const std::string geomTri = "techniques/vct/voxelize_triangle.geom";
+    if (m_voxelizer == "triangle") {
+        BOUNCE_TRY(m_voxTriangle, gl::Program::build({"vct.voxelize.triangle", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, geomTri}}, with({{"VCT_HYBRID", "0"}})}));
+    }
+    if (m_voxelizer == "hybrid") {
+        BOUNCE_TRY(m_voxHybrid, gl::Program::build({"vct.voxelize.hybrid1", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, geomTri}}, with({{"VCT_HYBRID", "1"}})}));
+        BOUNCE_TRY(m_voxLarge, gl::Program::build({"vct.voxelize.hybrid2", {{GL_VERTEX_SHADER, "techniques/vct/large.vert"}, {GL_GEOMETRY_SHADER, "techniques/vct/voxelize_fragment.geom"}, {GL_FRAGMENT_SHADER, "techniques/vct/voxelize_fragment.frag"}}, defines}));
+    }
+    if (m_voxelizer == "fragment") {
+        BOUNCE_TRY(m_voxFragment, gl::Program::build({"vct.voxelize.fragment", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, "techniques/vct/voxelize_fragment.geom"}, {GL_FRAGMENT_SHADER, "techniques/vct/voxelize_fragment.frag"}}, defines}));
+    }
+    if (m_binary) return {};
+    auto pass = [&](int id, bool sparse, gl::Program& out) -> Expected<void> {
+        const std::string label = fmt::format("vct.pass{}.{}", id, sparse ? "sparse" : "dense");
+        auto d = with({{"VCT_PASS", std::to_string(id)}, {"VCT_SPARSE", sparse ? "1" : "0"}});
+        if (sparse) {
+            BOUNCE_TRY(out, gl::Program::build({label, {{GL_VERTEX_SHADER, "techniques/vct/pass.vert"}}, d}));
+        } else {
+            BOUNCE_TRY(out, gl::Program::build({label, {{GL_COMPUTE_SHADER, "techniques/vct/pass.comp"}}, d}));
+        }
+        return {};
+    };
+    BOUNCE_TRY_VOID(pass(1, false, m_postDense));
+    BOUNCE_TRY_VOID(pass(2, false, m_mipIsoDense));
+    if (m_sparseMip) {
+        BOUNCE_TRY_VOID(pass(1, true, m_postSparse));
+        BOUNCE_TRY_VOID(pass(2, true, m_mipIsoSparse));
+    }
+    if (storage == VCT_STORAGE_ANISO || storage == VCT_STORAGE_SH_F32 || storage == VCT_STORAGE_SH_U8) {
+        const int id = storage == VCT_STORAGE_ANISO ? 3 : 4;
+        BOUNCE_TRY_VOID(pass(id, false, m_mipDense));
+        if (m_sparseMip) BOUNCE_TRY_VOID(pass(id, true, m_mipSparse));
+    }
+    auto traceDefines = [&](int part) { return with({{"VCT_PART", std::to_string(part)}}); };
+    BOUNCE_TRY(m_traceDiffuse, gl::Program::build({"vct.trace.diffuse", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "techniques/vct/trace.frag"}}, traceDefines(1)}));
+    BOUNCE_TRY(m_traceSpecular, gl::Program::build({"vct.trace.specular", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "techniques/vct/trace.frag"}}, traceDefines(2)}));
+    return {};
+}
+
+Expected<void> VctTechnique::setup(const SetupContext& ctx) {
+    const int N = m_resolution;
+    if (N < 16 || (N & (N - 1)) != 0) return makeError("setting resolution={} must be a power of two between 16 and 512", N);
+    const gl::GpuInfo& info = gl::Context::current()->info();
+    if (N > info.max3dTextureSize)
+        return makeError("setting resolution={} exceeds this GL's largest 3D texture ({} texels per side)", N, info.max3dTextureSize);
+    if (m_cutoff < 0.5f || m_cutoff > 64.0f) {
+        if (m_voxelizer == "hybrid")
+            return makeError("setting cutoff={} is out of range: the hybrid voxelizer's cutoff is 0.5..64 voxels^2 (thesis optimum 0.5..13.7)", m_cutoff);
+    }
+    if (ctx.scene.lights.size() > VCT_MAX_LIGHTS)
+        return makeError("technique vct injects at most {} lights at voxelization; scene '{}' has {}", VCT_MAX_LIGHTS, ctx.scene.name,
+                         ctx.scene.lights.size());
+    const int storage = storageId();
+    if (!m_binary && storage == VCT_STORAGE_SH_F32 && !epoxy_has_gl_extension("GL_NV_shader_atomic_float"))
+        return makeError("setting storage=sh-f32 needs GL_NV_shader_atomic_float (float image atomics), which this GL lacks; use sh-u8");
+    // Memory: every level of every volume (x 8/7), the level-0-only count volume, the mutexes.
+    const double voxels0 = std::pow(static_cast<double>(N), 3.0);
+    const double chain = 8.0 / 7.0;
+    double bytes = 0.0;
+    if (m_binary) bytes = voxels0;
+    else {
+        bytes = (4.0 + radianceBytesPerVoxel(m_storage)) * voxels0 * chain;  // iso/alpha + radiance
+        if (storage == VCT_STORAGE_ISO) bytes = 4.0 * voxels0 * chain;
+        if (storage == VCT_STORAGE_SH_F32) bytes += 4.0 * voxels0;  // write counts
+    }
+    if (m_sparseMip || !m_binary) bytes += 4.0 * voxels0 * chain;  // mutexes
+    const double budget = static_cast<double>(m_memoryBudgetMiB) * 1024.0 * 1024.0;
+    if (bytes > budget)
+        return makeError("settings resolution={} storage={}: the voxel volumes need {:.0f} MiB, over memoryBudgetMiB={}", N, m_storage,
+                         bytes / (1024.0 * 1024.0), m_memoryBudgetMiB);
+
+    // The grid: a cube around the scene (or the user box) with a one-voxel margin on each side.
+    glm::vec3 centre;
+    float side;
+    if (m_boxSide > 0.0f) {
+        centre = m_boxCentre;
+        side = m_boxSide;
+    } else {
+        glm::vec3 lo, hi;
+        ctx.scene.bounds(0.0f, lo, hi);
+        centre = 0.5f * (lo + hi);
+        const float extent = std::max(hi.x - lo.x, std::max(hi.y - lo.y, hi.z - lo.z));
+        if (!(extent > 0.0f)) return makeError("technique vct: scene '{}' has no extent to voxelize", ctx.scene.name);
+        side = extent * static_cast<float>(N) / static_cast<float>(N - 2);
+    }
+    const float voxel = side / static_cast<float>(N);
+    const glm::vec3 origin = centre - glm::vec3(0.5f * side);
+    m_uniforms.voxelFromWorld = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / voxel)) * glm::translate(glm::mat4(1.0f), -origin);
+    m_uniforms.worldFromVoxel = glm::inverse(m_uniforms.voxelFromWorld);
+    m_levels = static_cast<int>(std::log2(N)) + 1;
+    m_uniforms.grid = glm::vec4(static_cast<float>(N), 1.0f / static_cast<float>(N), voxel, static_cast<float>(m_levels));
+    m_sceneGpu = &ctx.sceneGpu;
+
+    BOUNCE_TRY_VOID(buildPrograms());
+    BOUNCE_TRY_VOID(allocate(ctx));
+
+    // Range samples: area-weighted points on every object's triangles (fixed seed: deterministic).
+    m_rangeSamples.clear();
+    double totalArea = 0.0;
+    std::vector<double> areas;
+    std::vector<std::pair<uint32_t, uint32_t>> tris;  // (object, first index)
+    for (uint32_t o = 0; o < ctx.scene.objects.size(); ++o) {
+        const Object& obj = ctx.scene.objects[o];
+        const Mesh& m = ctx.scene.meshes[obj.mesh];
+        const glm::mat4 w = obj.worldFromObject(0.0f);
+        for (uint32_t i = 0; i + 2 < m.indices.size(); i += 3) {
+            const glm::vec3 a = glm::vec3(w * glm::vec4(m.positions[m.indices[i]], 1.0f));
+            const glm::vec3 b = glm::vec3(w * glm::vec4(m.positions[m.indices[i + 1]], 1.0f));
+            const glm::vec3 c = glm::vec3(w * glm::vec4(m.positions[m.indices[i + 2]], 1.0f));
+            const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+            areas.push_back(area);
+            tris.emplace_back(o, i);
+            totalArea += area;
+        }
+    }
+    if (totalArea > 0.0) {
+        std::mt19937 rng(1234u);
+        std::discrete_distribution<size_t> pick(areas.begin(), areas.end());
+        std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+        for (size_t k = 0; k < kRangeSamples; ++k) {
+            const auto [o, i] = tris[pick(rng)];
+            const Object& obj = ctx.scene.objects[o];
+            const Mesh& m = ctx.scene.meshes[obj.mesh];
+            const glm::vec3 a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
+            float s = u01(rng), t = u01(rng);
+            if (s + t > 1.0f) s = 1.0f - s, t = 1.0f - t;
+            const Material& mat = ctx.scene.materials[obj.material];
+            RangeSample r;
+            r.object = o;
+            r.position = a + s * (b - a) + t * (c - a);
+            r.normal = glm::normalize(glm::cross(b - a, c - a));
+            r.albedo = std::max(mat.baseColor.x, std::max(mat.baseColor.y, mat.baseColor.z)) * (1.0f - mat.metallic);
+            if (mat.twoSided) r.albedo = -r.albedo;  // sign marks two-sided surfaces
+            m_rangeSamples.push_back(r);
+        }
+    }
+    return {};
+}
+
+Expected<void> VctTechnique::allocate(const SetupContext&) {
+    const int N = m_resolution;
+    const int storage = storageId();
+    auto volume = [&](std::string_view name, GLenum format, int levels) {
+        gl::TextureDesc d;
+        d.target = GL_TEXTURE_3D;
+        d.format = format;
+        d.width = d.height = d.depth = N;
+        d.levels = levels;
+        d.minFilter = levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST;
+        d.magFilter = levels > 1 ? GL_LINEAR : GL_NEAREST;
+        return gl::Texture::create(name, d);
+    };
+    m_iso = volume("vct.iso", GL_RGBA8, m_levels);
+    m_mutex = volume("vct.mutex", GL_R32UI, m_levels);
+    if (m_binary) m_binaryVolume = volume("vct.binary", GL_R8UI, 1);
+    else m_binaryVolume = volume("vct.binary.unused", GL_R8UI, 1);
+    m_volumes.clear();
+    if (!m_binary) {
+        if (storage == VCT_STORAGE_ANISO) {
+            static constexpr const char* kFaces[6] = {"vct.aniso.+x", "vct.aniso.-x", "vct.aniso.+y", "vct.aniso.-y", "vct.aniso.+z", "vct.aniso.-z"};
+            for (const char* f : kFaces) m_volumes.push_back(volume(f, GL_RGBA8, m_levels));
+        } else if (storage == VCT_STORAGE_SH_F32) {
+            for (int c = 0; c < 12; ++c) m_volumes.push_back(volume(fmt::format("vct.sh.{}{}", "rgb"[c / 4], c % 4), GL_R32F, m_levels));
+            m_count = volume("vct.sh.count", GL_R32UI, 1);
+            const float zero = 0.0f;
+            for (int c = 0; c < 12; ++c)
+                for (int l = 0; l < m_levels; ++l) glClearTexImage(m_volumes[c].id(), l, GL_RED, GL_FLOAT, &zero);
+        } else if (storage == VCT_STORAGE_SH_U8) {
+            for (int c = 0; c < 3; ++c) m_volumes.push_back(volume(fmt::format("vct.shu8.{}", "rgb"[c]), GL_RGBA8_SNORM, m_levels));
+        }
+    }
+    m_ubo = gl::Buffer::create("vct.uniforms", sizeof(gpu::VctUniforms));
+    m_counters = gl::Buffer::create("vct.counters", 8 * sizeof(uint32_t));
+    size_t triangles = m_sceneGpu->triangleCount(render::DrawFilter::All);
+    m_largeCapacity = static_cast<uint32_t>(std::max<size_t>(triangles, 1));
+    m_large = gl::Buffer::create("vct.largeTriangles", static_cast<size_t>(m_largeCapacity) * 3 * 2 * sizeof(uint32_t));
+    m_lists.clear();
+    for (int l = 0; l < m_levels; ++l) {
+        const uint64_t n = static_cast<uint64_t>(N >> l);
+        ActiveList list;
+        list.capacity = static_cast<uint32_t>(std::min<uint64_t>(n * n * n, kListCapacityPerSquare * n * n));
+        list.buffer = gl::Buffer::create(fmt::format("vct.activeList{}", l), sizeof(ListHead) + list.capacity * sizeof(uint32_t));
+        m_lists.push_back(std::move(list));
+    }
+    m_sparseActive = m_sparseMip;
+    m_dummy2D = gl::Texture::create2D("vct.shadowDummy2D", 1, 1, GL_DEPTH_COMPONENT32F);
+    m_dummy2D.setCompareMode(true);
+    gl::TextureDesc cube;
+    cube.target = GL_TEXTURE_CUBE_MAP;
+    cube.format = GL_R32F;
+    m_dummyCube = gl::Texture::create("vct.shadowDummyCube", cube);
+    const float one = 1.0f;
+    glClearTexImage(m_dummy2D.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+    glClearTexImage(m_dummyCube.id(), 0, GL_RED, GL_FLOAT, &one);
+    m_voxelFbo = gl::Framebuffer::create("vct.voxelizeFbo");
+    glNamedFramebufferParameteri(m_voxelFbo.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, N);
+    glNamedFramebufferParameteri(m_voxelFbo.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, N);
+    m_traceFbo = gl::Framebuffer::create("vct.traceFbo");
+    return {};
+}
+
+void VctTechnique::updateUniforms(FrameContext& ctx) {
+    gpu::VctUniforms& u = m_uniforms;
+    const float side = u.grid.z * u.grid.x;
+    u.voxelize = glm::vec4(m_separability == "conservative" ? 1.0f : 0.0f, m_cutoff, static_cast<float>(storageId()),
+                           m_atomic == "average" ? static_cast<float>(VCT_ATOMIC_AVERAGE) : static_cast<float>(VCT_ATOMIC_MAX));
+    // Radiance range: the setting, or the brightest reflected radiance of the surface samples.
+    float range = m_radianceRange;
+    if (range <= 0.0f) {
+        float brightest = 0.0f;
+        const std::vector<Light>& lights = ctx.sceneGpu.lights();
+        std::vector<glm::mat4> transforms(ctx.scene.objects.size()), normals(ctx.scene.objects.size());
+        for (size_t o = 0; o < ctx.scene.objects.size(); ++o) {
+            transforms[o] = ctx.scene.objects[o].worldFromObject(ctx.time);
+            normals[o] = glm::transpose(glm::inverse(transforms[o]));
+        }
+        for (const RangeSample& s : m_rangeSamples) {
+            const glm::vec3 x = glm::vec3(transforms[s.object] * glm::vec4(s.position, 1.0f));
+            const glm::vec3 n = glm::normalize(glm::vec3(normals[s.object] * glm::vec4(s.normal, 0.0f)));
+            float e = 0.0f;
+            for (const Light& l : lights) e += unshadowedIrradiance(l, x, n, s.albedo < 0.0f);
+            brightest = std::max(brightest, std::abs(s.albedo) / glm::pi<float>() * e);
+        }
+        range = brightest > 0.0f ? brightest * kRangeHeadroom : 1.0f;
+    }
+    u.range = glm::vec4(range, range * kShU8RangeFactor, static_cast<float>(std::min<size_t>(ctx.lights.count(), VCT_MAX_LIGHTS)),
+                        m_binary ? 1.0f : 0.0f);
+    const float maxDist = m_maxDistance > 0.0f ? m_maxDistance : side * std::sqrt(3.0f);
+    const float aoDist = m_aoDistance > 0.0f ? m_aoDistance : 0.25f * side;
+    u.cone = glm::vec4(m_startOffset, std::max(m_maxStartOffset, m_startOffset), maxDist, aoDist);
+    u.cone2 = glm::vec4(m_specular ? 1.0f : 0.0f, m_specularApertureScale, m_tracer == "specialised" ? 1.0f : 0.0f, 0.0f);
+    u.debug = glm::vec4(static_cast<float>(debugIndex(m_debugView)), static_cast<float>(std::min(m_debugLevel, m_levels - 1)), m_debugSlice,
+                        m_sparseActive ? 1.0f : 0.0f);
+    for (size_t i = 0; i < VCT_MAX_LIGHTS; ++i) u.lights[i] = i < ctx.lights.count() ? ctx.lights.light(i) : gpu::LightGpu{};
+    m_ubo.upload(0, sizeof(u), &u);
+}
+
+void VctTechnique::clearVolumes() {
+    const uint32_t zero = 0u;
+    const float zeroF[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const int storage = storageId();
+    if (m_binary) {
+        glClearTexImage(m_binaryVolume.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    }
+    glClearTexImage(m_iso.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, &zero);
+    if (m_sparseActive) {
+        for (int l = 0; l < m_levels; ++l) glClearTexImage(m_mutex.id(), l, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        // Only active parents are written: every other voxel of the upper levels must read empty.
+        for (int l = 1; l < m_levels; ++l) {
+            glClearTexImage(m_iso.id(), l, GL_RGBA, GL_UNSIGNED_BYTE, &zero);
+            for (gl::Texture& v : m_volumes) {
+                if (storage == VCT_STORAGE_SH_F32) glClearTexImage(v.id(), l, GL_RED, GL_FLOAT, zeroF);
+                else glClearTexImage(v.id(), l, GL_RGBA, GL_FLOAT, zeroF);
+            }
+        }
+        for (ActiveList& list : m_lists) {
+            const ListHead head{0u, 1u, 0u, 0u, list.capacity, 0u, 0u, 0u};
+            list.buffer.upload(0, sizeof(head), &head);
+        }
+    }
+    // The SH-U8 transfer writes occupied voxels only.
+    if (storage == VCT_STORAGE_SH_U8 && !m_binary)
+        for (gl::Texture& v : m_volumes) glClearTexImage(v.id(), 0, GL_RGBA, GL_FLOAT, zeroF);
+    // The SH-U8 transfer writes occupied voxels only.
+    if (storage == VCT_STORAGE_SH_U8 && !m_binary)
+        for (gl::Texture& v : m_volumes) glClearTexImage(v.id(), 0, GL_RGBA, GL_FLOAT, zeroF);
+    if (storage == VCT_STORAGE_SH_F32 && !m_binary) {
+        for (int c = 0; c < 3; ++c) glClearTexImage(m_volumes[4 * c].id(), 0, GL_RED, GL_FLOAT, zeroF);
+        glClearTexImage(m_count.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
+    const uint32_t counters[8] = {0, 0, 0, 0, 0, 1, 0, 0};  // [4..7]: pass 2's DrawArraysIndirectCommand
+    m_counters.upload(0, sizeof(counters), counters);
+}
+
+void VctTechnique::voxelize(FrameContext& ctx) {
+    const int storage = storageId();
+    m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+    glBindImageTexture(BINDING_IMG0, m_iso.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    if (storage == VCT_STORAGE_SH_F32 && !m_binary) {
+        for (int c = 0; c < 3; ++c) glBindImageTexture(BINDING_IMG1 + c, m_volumes[4 * c].id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+        glBindImageTexture(BINDING_IMG4, m_count.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    }
+    glBindImageTexture(BINDING_IMG5, m_binaryVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
+    glBindImageTexture(BINDING_IMG6, m_mutex.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    m_lists[0].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+    m_counters.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+    for (size_t i = 0; i < VCT_MAX_LIGHTS; ++i) {
+        if (i < ctx.lights.count()) ctx.lights.bindShadowMaps(i, BINDING_TEX_VCT_SHADOW2D0 + i, BINDING_TEX_VCT_SHADOWCUBE0 + i);
+        else {
+            m_dummy2D.bind(static_cast<GLuint>(BINDING_TEX_VCT_SHADOW2D0 + i));
+            m_dummyCube.bind(static_cast<GLuint>(BINDING_TEX_VCT_SHADOWCUBE0 + i));
+        }
+    }
+    // lighting.glsl's single-light samplers must see complete textures of their types too.
+    m_dummy2D.bind(BINDING_TEX_SHADOW);
+    m_dummyCube.bind(BINDING_TEX_SHADOW_CUBE);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    m_voxelFbo.bind();
+    render::View view;  // unused by the voxelizer's vertex stage (it reads u_vct), sets the viewport
+    view.viewport = {m_resolution, m_resolution};
+    view.clipFromView = m_uniforms.voxelFromWorld;
+    if (m_voxelizer == "triangle" || m_voxelizer == "hybrid") {
+        auto s = ctx.timers.scope("pass1");
+        glEnable(GL_RASTERIZER_DISCARD);
+        if (m_voxelizer == "hybrid") {
+            m_large.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
+            m_voxHybrid.set("u_largeCapacity", m_largeCapacity);
+            m_voxHybrid.use();
+        } else {
+            m_voxTriangle.use();
+        }
+        ctx.drawer.draw(view);
+        glDisable(GL_RASTERIZER_DISCARD);
+    }
+    if (m_voxelizer == "hybrid") {
+        auto s = ctx.timers.scope("pass2");
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        m_sceneGpu->vertices().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+        m_large.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
+        m_voxLarge.use();
+        glViewport(0, 0, m_resolution, m_resolution);
+        gl::Context::current()->bindEmptyVertexArray();
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_counters.id());
+        glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(4 * sizeof(uint32_t)));
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    }
+    if (m_voxelizer == "fragment") {
+        m_voxFragment.use();
+        ctx.drawer.draw(view);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+void VctTechnique::runPass(gl::Program& dense, gl::Program& sparse, bool sparseMode, int level, int listIn, int listOut) {
+    if (sparseMode) {
+        m_lists[listIn].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+        m_lists[listOut].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+        sparse.set("u_level", level);
+        sparse.use();
+        glEnable(GL_RASTERIZER_DISCARD);
+        gl::Context::current()->bindEmptyVertexArray();
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_lists[listIn].buffer.id());
+        glDrawArraysIndirect(GL_POINTS, nullptr);
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+        glDisable(GL_RASTERIZER_DISCARD);
+    } else {
+        // Unused by the dense path but declared: keep valid buffers bound.
+        m_lists[0].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+        m_lists[0].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+        dense.set("u_level", level);
+        const int size = m_resolution >> level;
+        dense.set("u_size", size);
+        dense.use();
+        gl::Program::dispatch(size, size, size, 4, 4, 4);
+    }
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+void VctTechnique::postVoxelize(bool sparse) {
+    const int storage = storageId();
+    glBindImageTexture(BINDING_IMG0, m_iso.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    if (storage == VCT_STORAGE_SH_F32) {
+        for (int c = 0; c < 3; ++c) glBindImageTexture(BINDING_IMG1 + c, m_volumes[4 * c].id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+        glBindImageTexture(BINDING_IMG4, m_count.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    } else if (storage == VCT_STORAGE_SH_U8) {
+        for (int c = 0; c < 3; ++c) glBindImageTexture(BINDING_IMG1 + c, m_volumes[c].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
+    }
+    runPass(m_postDense, m_postSparse, sparse, 0, 0, 0);
+    if (storage == VCT_STORAGE_ANISO) {
+        // Level 0 is isotropic: the same colour on all six faces (thesis 5.1.2).
+        const int N = m_resolution;
+        for (gl::Texture& face : m_volumes)
+            glCopyImageSubData(m_iso.id(), GL_TEXTURE_3D, 0, 0, 0, 0, face.id(), GL_TEXTURE_3D, 0, 0, 0, 0, N, N, N);
+    }
+}
+
+void VctTechnique::bindVolumes() const {
+    m_iso.bind(BINDING_TEX_VCT_ALPHA);
+    for (size_t i = 0; i < m_volumes.size(); ++i) m_volumes[i].bind(static_cast<GLuint>(BINDING_TEX_VCT_VOLUME0 + i));
+}
+
+void VctTechnique::mipmap(bool sparse) {
+    const int storage = storageId();
+    bindVolumes();
+    for (int level = 1; level < m_levels; ++level) {
+        glBindImageTexture(BINDING_IMG0, m_iso.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        glBindImageTexture(BINDING_IMG7, m_mutex.id(), level, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+        runPass(m_mipIsoDense, m_mipIsoSparse, sparse, level, level - 1, level);
+        if (storage == VCT_STORAGE_ANISO) {
+            for (int f = 0; f < 6; ++f)
+                glBindImageTexture(BINDING_IMG0 + f, m_volumes[f].id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+            runPass(m_mipDense, m_mipSparse, sparse, level, level, level);
+        } else if (storage == VCT_STORAGE_SH_F32 || storage == VCT_STORAGE_SH_U8) {
+            for (int c = 0; c < 3; ++c) {
+                if (storage == VCT_STORAGE_SH_F32) {
+                    for (int k = 0; k < 4; ++k)
+                        glBindImageTexture(BINDING_IMG0 + k, m_volumes[4 * c + k].id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+                } else {
+                    glBindImageTexture(BINDING_IMG0, m_volumes[c].id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
+                }
+                m_mipDense.set("u_channel", c);
+                if (sparse) m_mipSparse.set("u_channel", c);
+                runPass(m_mipDense, m_mipSparse, sparse, level, level, level);
+            }
+        }
+    }
+}
+
+void VctTechnique::trace(FrameContext& ctx, const gl::Texture& indirect) {
+    m_traceFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+    m_traceFbo.setDrawBuffers(1);
+    BOUNCE_CHECK(m_traceFbo.complete(), "vct trace framebuffer");
+    m_traceFbo.bind();
+    glViewport(0, 0, ctx.size.x, ctx.size.y);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    ctx.gbuffer.bind();
+    bindVolumes();
+    m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+    gl::Context::current()->bindEmptyVertexArray();
+    {
+        auto s = ctx.timers.scope("diffuse-ao");
+        m_traceDiffuse.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    if (m_specular && m_debugView == "none") {
+        auto s = ctx.timers.scope("specular");
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        m_traceSpecular.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
+    }
+}
+
+void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    updateUniforms(ctx);
+    const bool sparse = m_sparseActive && !m_binary;
+    {
+        auto s = ctx.timers.scope("voxelize");
+        clearVolumes();
+        voxelize(ctx);
+    }
+    if (!m_binary) {
+        {
+            auto s = ctx.timers.scope("post-voxelize");
+            postVoxelize(sparse);
+        }
+        {
+            auto s = ctx.timers.scope("mipmap");
+            mipmap(sparse);
+        }
+        trace(ctx, indirect);
+    } else {
+        m_traceFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+        m_traceFbo.setDrawBuffers(1);
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(m_traceFbo.id(), GL_COLOR, 0, zero);
+    }
+    // Counters (one small readback per frame: the thesis reports the same counts).
+    uint32_t c[8];
+    m_counters.download(0, sizeof(c), c);
+    ctx.counters["voxelWrites"] = c[0];
+    ctx.counters["trianglesPass1"] = c[1];
+    ctx.counters["trianglesPass2"] = c[2];
+    ctx.counters["resolution"] = m_resolution;
+    ctx.counters["radianceRange"] = m_uniforms.range.x;
+    ctx.counters["bytesPerVoxel"] = m_binary ? 1.0 : radianceBytesPerVoxel(m_storage);
+    ctx.counters["alphaBytesPerVoxel"] = (m_binary || storageId() == VCT_STORAGE_ISO) ? 0.0 : 4.0;
+    if (sparse) {
+        bool overflow = false;
+        double active = 0.0;
+        for (int l = 0; l < m_levels; ++l) {
+            ListHead h;
+            m_lists[l].buffer.download(0, sizeof(h), &h);
+            if (h.count > m_lists[l].capacity) overflow = true;
+            if (l == 0) ctx.counters["activeVoxels"] = h.count;
+            active += h.count;
+        }
+        ctx.counters["activeVoxelsAllLevels"] = active;
+        if (overflow) {
+            spdlog::warn("vct: an active-voxel list overflowed; switching to dense mipmapping");
+            m_sparseActive = false;
+        }
+        ctx.counters["sparseOverflow"] = overflow ? 1.0 : 0.0;
+    }
+    ctx.counters["sparseMip"] = sparse ? 1.0 : 0.0;
+}
+
+std::vector<uint8_t> VctTechnique::downloadOccupancy() const {
+    const size_t n = static_cast<size_t>(m_resolution) * m_resolution * m_resolution;
+    std::vector<uint8_t> out(n);
+    if (m_binary) {
+        glGetTextureImage(m_binaryVolume.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, static_cast<GLsizei>(n), out.data());
+        return out;
+    }
+    std::vector<uint32_t> iso = downloadIso(0);
+    for (size_t i = 0; i < n; ++i) out[i] = (iso[i] >> 24) != 0 ? 1 : 0;
+    return out;
+}
+
+std::vector<uint32_t> VctTechnique::downloadIso(int level) const {
+    const size_t side = static_cast<size_t>(m_resolution >> level);
+    std::vector<uint32_t> out(side * side * side);
+    glGetTextureImage(m_iso.id(), level, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(out.size() * 4), out.data());
+    return out;
+}
+
+std::vector<float> VctTechnique::downloadVolume(int index, int level) const {
+    const size_t side = static_cast<size_t>(m_resolution >> level);
+    const bool single = storageId() == VCT_STORAGE_SH_F32;
+    std::vector<float> out(side * side * side * (single ? 1 : 4));
+    glGetTextureImage(m_volumes.at(static_cast<size_t>(index)).id(), level, single ? GL_RED : GL_RGBA, GL_FLOAT,
+                      static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+    return out;
+}
+
+}  // namespace bounce

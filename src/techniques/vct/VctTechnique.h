@@ -1,0 +1,106 @@
+#pragma once
+// `vct`: voxel cone tracing with hybrid voxelization and spherical-harmonics radiance (Rauwendaal
+// 2013). See VctTechnique.cpp for the passes and docs/techniques/vct.md for settings and deviations.
+#include "techniques/Technique.h"
+#include "techniques/vct/vct_shared.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace bounce {
+
+class VctTechnique final : public Technique {
+public:
+    std::string_view name() const override { return "vct"; }
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+
+    static constexpr std::array<std::string_view, 3> kVoxelizers{"hybrid", "triangle", "fragment"};
+    static constexpr std::array<std::string_view, 2> kSeparabilities{"conservative", "thin"};
+    static constexpr std::array<std::string_view, 4> kStorages{"iso", "aniso", "sh-f32", "sh-u8"};
+    static constexpr std::array<std::string_view, 2> kAtomics{"average", "max"};
+    static constexpr std::array<std::string_view, 2> kTracers{"specialised", "generic"};
+    static constexpr std::array<std::string_view, 5> kDebugViews{"none", "occupancy", "radiance", "ao", "slice"};
+
+    // For tests and benchmarks: the volumes of the last frame.
+    int resolution() const { return m_resolution; }
+    int levels() const { return m_levels; }
+    // Level-0 occupancy (x fastest), from the binary volume or the isotropic volume's opacity.
+    std::vector<uint8_t> downloadOccupancy() const;
+    // Level `level` of the isotropic volume as RGBA8 (x fastest).
+    std::vector<uint32_t> downloadIso(int level) const;
+    // Level `level` of the volume texture `index` (aniso face, SH coefficient or SH-U8 channel) as
+    // floats, 4 per voxel for RGBA formats and 1 for R32F.
+    std::vector<float> downloadVolume(int index, int level) const;
+    glm::mat4 voxelFromWorld() const { return m_uniforms.voxelFromWorld; }
+    float radianceRange() const { return m_uniforms.range.x; }
+    // Bytes per level-0 voxel of the radiance storage alone, and of the opacity volume (R8).
+    static double radianceBytesPerVoxel(std::string_view storage);
+
+private:
+    struct ActiveList {
+        gl::Buffer buffer;  // DrawArraysIndirectCommand, capacity, then packed voxels
+        uint32_t capacity = 0;
+    };
+    int storageId() const;
+    Expected<void> buildPrograms();
+    Expected<void> allocate(const SetupContext& ctx);
+    void updateUniforms(FrameContext& ctx);
+    void clearVolumes();
+    void voxelize(FrameContext& ctx);
+    void postVoxelize(bool sparse);
+    void mipmap(bool sparse);
+    void runPass(gl::Program& dense, gl::Program& sparse, bool sparseMode, int level, int listIn, int listOut);
+    void trace(FrameContext& ctx, const gl::Texture& indirect);
+    void bindVolumes() const;
+
+    // Settings (docs/techniques/vct.md gives the sources of the defaults).
+    std::string m_voxelizer{"hybrid"};
+    int m_resolution = 64;
+    std::string m_separability{"conservative"};
+    float m_cutoff = 3.0f;
+    std::string m_storage{"sh-u8"};
+    std::string m_atomic{"average"};
+    bool m_sparseMip = true;
+    bool m_binary = false;
+    std::string m_tracer{"specialised"};
+    float m_startOffset = 1.5f;
+    float m_maxStartOffset = 4.0f;
+    float m_maxDistance = 0.0f;
+    float m_aoDistance = 0.0f;
+    bool m_specular = true;
+    float m_specularApertureScale = 1.0f;
+    float m_radianceRange = 0.0f;
+    std::string m_debugView{"none"};
+    int m_debugLevel = 0;
+    float m_debugSlice = 0.5f;
+    float m_boxSide = 0.0f;
+    glm::vec3 m_boxCentre{0.0f};
+    int m_memoryBudgetMiB = 2048;
+
+    int m_levels = 1;
+    bool m_sparseActive = false;  // sparse path on (off after an overflow of a list)
+    gpu::VctUniforms m_uniforms{};
+    gl::Buffer m_ubo, m_counters, m_large;
+    uint32_t m_largeCapacity = 0;
+    gl::Texture m_iso, m_binaryVolume, m_mutex, m_count;
+    std::vector<gl::Texture> m_volumes;  // aniso faces / SH coefficients / SH-U8 channels
+    std::vector<ActiveList> m_lists;     // per level
+    gl::Texture m_dummy2D, m_dummyCube;
+    gl::Framebuffer m_voxelFbo, m_traceFbo;
+    gl::Program m_voxTriangle, m_voxHybrid, m_voxFragment, m_voxLarge;
+    gl::Program m_postDense, m_postSparse, m_mipIsoDense, m_mipIsoSparse, m_mipDense, m_mipSparse;
+    gl::Program m_traceDiffuse, m_traceSpecular;
+    const render::SceneGpu* m_sceneGpu = nullptr;
+    // Surface samples for the automatic radiance range (object space).
+    struct RangeSample {
+        uint32_t object;
+        glm::vec3 position, normal;
+        float albedo;  // largest channel
+    };
+    std::vector<RangeSample> m_rangeSamples;
+};
+
+}  // namespace bounce
