@@ -375,8 +375,11 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
         std::ifstream in(path, std::ios::binary);
         if (!in) return makeError("{}: cannot read model '{}'", where, path.string());
         const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-        if (std::optional<ObjNormalsRewrite> rewrite = addMissingObjNormals(text))
+        if (std::optional<ObjNormalsRewrite> rewrite = addMissingObjNormals(text)) {
+            spdlog::debug("{}: normals added to {} flat and {} smoothing-group face(s)", where, rewrite->flatFaces,
+                          rewrite->smoothFaces);
             importer.SetIOHandler(new OverlayIoSystem(path.string(), std::move(rewrite->text)));
+        }
     }
     // FlipUVs: bounce's uv origin is the image's top-left corner (Image row 0), see docs/scene.md.
     const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices |
