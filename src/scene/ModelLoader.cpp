@@ -3,8 +3,11 @@
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "core/ToneMap.h"
+#include "scene/ObjNormals.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <glm/geometric.hpp>
@@ -13,9 +16,13 @@
 #include <stb/stb_image.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <utility>
 
 namespace bounce {
 
@@ -67,6 +74,56 @@ Image decodeSrgb8(const unsigned char* pixels, int width, int height, int channe
         }
     return image;
 }
+
+// glTF 2.0 (section 3.7.2.1, "Meshes: Overview"): "When normals are not specified, client
+// implementations MUST calculate flat normals". Each triangle's corners get its geometric normal
+// (counter-clockwise = front, as glTF defines); a vertex is shared only by triangles of the same normal.
+// assimp 5.2's aiProcess_GenNormals cannot do this on glTF's indexed meshes: it writes each face's
+// normal into shared vertices, the last face winning (checked against assimp 5.2.5 on an indexed cube).
+void makeFlatNormals(Mesh& m) {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec3> normals;
+    std::vector<uint32_t> indices;
+    indices.reserve(m.indices.size());
+    std::map<std::pair<uint32_t, std::array<float, 3>>, uint32_t> shared;
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]], c = m.positions[m.indices[t + 2]];
+        const glm::vec3 cr = glm::cross(b - a, c - a);
+        // A degenerate triangle gets a zero normal; finalizeScene drops it.
+        const glm::vec3 n = glm::length(cr) > 0.0f ? glm::normalize(cr) : glm::vec3(0.0f);
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t source = m.indices[t + k];
+            const auto [it, added] = shared.try_emplace({source, {n.x, n.y, n.z}}, static_cast<uint32_t>(positions.size()));
+            if (added) {
+                positions.push_back(m.positions[source]);
+                if (!m.uvs.empty()) uvs.push_back(m.uvs[source]);
+                normals.push_back(n);
+            }
+            indices.push_back(it->second);
+        }
+    }
+    m.positions = std::move(positions);
+    m.uvs = std::move(uvs);
+    m.normals = std::move(normals);
+    m.indices = std::move(indices);
+}
+
+// Serves `text` in place of the file `path` and everything else (MTL files, textures) from disk: how
+// an OBJ rewritten by addMissingObjNormals reaches assimp with its relative references intact.
+class OverlayIoSystem : public Assimp::DefaultIOSystem {
+public:
+    OverlayIoSystem(std::string path, std::string text) : m_path(std::move(path)), m_text(std::move(text)) {}
+
+    Assimp::IOStream* Open(const char* file, const char* mode) override {
+        if (m_path == file || ComparePaths(m_path.c_str(), file))
+            return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(m_text.data()), m_text.size());
+        return DefaultIOSystem::Open(file, mode);
+    }
+
+private:
+    std::string m_path, m_text;
+};
 
 Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what) {
     if (tex->mHeight == 0) {  // compressed file bytes (PNG, JPEG) of length mWidth
@@ -193,6 +250,9 @@ private:
             if (face.mNumIndices != 3) continue;
             m.indices.insert(m.indices.end(), face.mIndices, face.mIndices + 3);
         }
+        // OBJ faces without normals got theirs from addMissingObjNormals; PLY keeps finalizeScene's
+        // smooth normals (docs/scene.md "Model files").
+        if (m_format == Format::Gltf && m.normals.empty()) makeFlatNormals(m);
         m_meshUsable[index] = !m.indices.empty();
         return m;
     }
@@ -310,6 +370,17 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
     if (!fs::exists(path)) return makeError("{}: model file '{}' not found", where, path.string());
 
     Assimp::Importer importer;
+    if (format == Format::Obj) {
+        // assimp 5.2 ignores OBJ smoothing groups: faces without normals get them from bounce first.
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return makeError("{}: cannot read model '{}'", where, path.string());
+        const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        if (std::optional<ObjNormalsRewrite> rewrite = addMissingObjNormals(text)) {
+            spdlog::debug("{}: normals added to {} flat and {} smoothing-group face(s)", where, rewrite->flatFaces,
+                          rewrite->smoothFaces);
+            importer.SetIOHandler(new OverlayIoSystem(path.string(), std::move(rewrite->text)));
+        }
+    }
     // FlipUVs: bounce's uv origin is the image's top-left corner (Image row 0), see docs/scene.md.
     const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices |
                            aiProcess_FlipUVs | aiProcess_ValidateDataStructure;

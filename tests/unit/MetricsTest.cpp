@@ -1,6 +1,8 @@
 // Tests of the metrics layer against values the papers and definitions fix in advance: identical
-// images, constant colour pairs with hand-computed answers, published colour coordinates, and the
-// properties each paper states (ranges, symmetry, monotonicity).
+// images, constant colour pairs with hand-computed answers, published colour coordinates, the
+// properties each paper states (ranges, symmetry, monotonicity), and values computed outside bounce
+// on a committed textured pair (tests/data/flip: the FLIP authors' code; tests/data/ssim: an
+// independent SSIM). docs/metrics.md "Mutation checks" lists the deliberate errors these catch.
 #include "core/ImageIo.h"
 #include "core/ToneMap.h"
 #include "metrics/ColorSpaces.h"
@@ -16,9 +18,12 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 namespace fs = std::filesystem;
 using namespace bounce;
@@ -63,6 +68,52 @@ double publishedCmaxHyab() {
     const double ga = kGreenA * kGreenL / 100, gb = kGreenB * kGreenL / 100;
     const double ba = kBlueA * kBlueL / 100, bb = kBlueB * kBlueL / 100;
     return std::abs(kGreenL - kBlueL) + std::hypot(ga - ba, gb - bb);
+}
+
+// A table computed outside bounce (tests/data/flip/README.md, tests/data/ssim/README.md): lines
+// starting with '#' are comments, "# mean V" gives the pooled mean, every other line is one row of
+// the per-pixel map.
+struct ReferenceTable {
+    double mean = std::nan("");
+    int width = 0, height = 0;
+    std::vector<double> values;  // row-major
+    double at(int x, int y) const { return values[static_cast<size_t>(y) * width + x]; }
+};
+
+ReferenceTable readReferenceTable(const fs::path& path) {
+    ReferenceTable t;
+    std::ifstream in(path);
+    EXPECT_TRUE(in) << path;
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        std::istringstream fields(line);
+        if (line[0] == '#') {
+            std::string hash, key;
+            fields >> hash >> key;
+            if (key == "mean") fields >> t.mean;
+            continue;
+        }
+        int n = 0;
+        for (double v; fields >> v; ++n) t.values.push_back(v);
+        EXPECT_TRUE(t.width == 0 || t.width == n) << path << ": ragged row " << t.height;
+        t.width = n;
+        ++t.height;
+    }
+    return t;
+}
+
+// The committed 32x32 8-bit sRGB pair of tests/data/flip/ (make_pair.py), as linear RGB.
+struct PngPair {
+    Image test, reference;
+};
+
+PngPair committedPair() {
+    const fs::path dir = fs::path(BOUNCE_SOURCE_DIR) / "tests" / "data" / "flip";
+    Expected<Image> test = readImage(dir / "test.png"), reference = readImage(dir / "reference.png");
+    EXPECT_TRUE(test.ok() && reference.ok());
+    if (!test.ok() || !reference.ok()) return {};
+    return {std::move(test.value()), std::move(reference.value())};
 }
 
 }  // namespace
@@ -260,6 +311,35 @@ TEST(Ssim, FallsAsNoiseGrows) {
     }
 }
 
+TEST(Ssim, MatchesAnIndependentComputationOnAStructuredPair) {
+    // The committed FLIP pair (checker, band, line, ramp, dots; tests/data/flip/) against
+    // tests/data/ssim/ssim_reference.py: Wang et al.'s definitions evaluated directly, in double, per
+    // channel on the stored 8-bit values / 255 (the display values bounce compare uses for PNG).
+    // sigma = 3 instead of 1.5 moves the mean by 0.023 and a pixel by 0.27 (docs/metrics.md,
+    // "Mutation checks").
+    const PngPair pair = committedPair();
+    ASSERT_EQ(pair.reference.width(), 32);
+    const Image test = toDisplay(pair.test, kDisplayImageToneMap);
+    const Image reference = toDisplay(pair.reference, kDisplayImageToneMap);
+    const ReferenceTable expected = readReferenceTable(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/ssim/ssim-flip-pair.txt");
+    ASSERT_EQ(expected.width, 22);  // the valid region: windows wholly inside the image
+    ASSERT_EQ(expected.height, 22);
+    // A structured pair, not a degenerate one: the map spans a wide range.
+    EXPECT_LT(*std::min_element(expected.values.begin(), expected.values.end()), 0.5);
+    EXPECT_GT(*std::max_element(expected.values.begin(), expected.values.end()), 0.95);
+
+    const ErrorMap map = ssimMap(test, reference);
+    // bounce works in float and takes variances as E[x^2] - mu^2 after separable filtering; the
+    // reference sums (x - mu)^2 in double. The cancellation costs a few float ulps of E[x^2] (<= 1),
+    // divided by sigma_x^2 + sigma_y^2 + C2 >= 9e-4 in the worst (flattest) window: 6e-6 measured at
+    // the worst pixel; 5e-5 leaves room for other compilers' float contraction.
+    for (int y = 0; y < expected.height; ++y)
+        for (int x = 0; x < expected.width; ++x)
+            EXPECT_NEAR(map.at(x + 5, y + 5), expected.at(x, y), 5e-5) << "pixel (" << x + 5 << ", " << y + 5 << ")";
+    // The mean averages those errors (1.2e-7 measured).
+    EXPECT_NEAR(meanSsim(test, reference), expected.mean, 1e-6);
+}
+
 // --- FLIP ----------------------------------------------------------------------------------------
 
 TEST(Flip, IdenticalImagesGiveZero) {
@@ -352,6 +432,34 @@ TEST(Flip, FartherViewerSeesLessColourErrorInFineDetail) {
     const double farViewer = ldrFlipLayers(grey, board, 67.0).color.mean();
     EXPECT_GT(nearViewer, farViewer);
     EXPECT_NEAR(kFlipDefaultPixelsPerDegree, 67.02, 0.01);  // 0.7 m, 0.7 m wide 4K monitor
+}
+
+TEST(Flip, MatchesTheAuthorsImplementationOnATexturedPair) {
+    // Mean and per-pixel LDR-FLIP of the committed pair against the values NVlabs/flip's FLIP.h
+    // (the authors' implementation, v1.6) computed, at the default 67.02 ppd and at 30 ppd
+    // (tests/data/flip/README.md says how). The pair has flat colours, hard edges, a thin line, a
+    // ramp and dots, so the CSF filters, the feature detectors and the remap all matter: b1 of the
+    // achromatic CSF 10x too large moves pixels by 0.33 and the mean by 0.005 (docs/metrics.md,
+    // "Mutation checks").
+    const PngPair pair = committedPair();
+    ASSERT_EQ(pair.reference.width(), 32);
+    const fs::path dir = fs::path(BOUNCE_SOURCE_DIR) / "tests" / "data" / "flip";
+    for (const auto& [file, ppd] : {std::pair{"ldrflip-67ppd.txt", kFlipDefaultPixelsPerDegree}, std::pair{"ldrflip-30ppd.txt", 30.0}}) {
+        SCOPED_TRACE(file);
+        const ReferenceTable expected = readReferenceTable(dir / file);
+        ASSERT_EQ(expected.width, 32);
+        ASSERT_EQ(expected.height, 32);
+        const ErrorMap map = ldrFlip(pair.test, pair.reference, ppd);
+        // Both implementations run in float with differently ordered sums (the authors convolve
+        // with their own separated kernels); the x^0.7 and x^(1 - feature) exponents magnify that
+        // near zero error. Measured: at most 1.3e-5 (67 ppd) and 4.4e-5 (30 ppd, a pixel of error
+        // 4e-5 vs 0). 1e-4 is still 3000 times smaller than the b1 mutation's change.
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                EXPECT_NEAR(map.at(x, y), expected.at(x, y), 1e-4) << "pixel (" << x << ", " << y << ")";
+        // The mean averages the round-off (2e-6 measured at both ppd).
+        EXPECT_NEAR(map.mean(), expected.mean, 1e-5);
+    }
 }
 
 TEST(HdrFlip, ToneMapperIsAcesWithPointSixPreExposure) {

@@ -337,6 +337,210 @@ const char* kCubeObj =
     "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 1 2 6 5\nf 4 8 7 3\n";
 }
 
+// Missing normals (docs/scene.md "Model files"): OBJ is flat unless a nonzero smoothing group is active,
+// glTF is flat (glTF 2.0 section 3.7.2.1), explicit normals are kept.
+namespace {
+
+// Normals closer than this are the same direction: the loaders' normals are float and normalised
+// (about 1e-7 apart when equal), distinct cube normals are at least 0.5 apart.
+constexpr float kSameNormal = 1e-5f;
+
+std::vector<glm::vec3> distinctNormals(const Mesh& mesh) {
+    std::vector<glm::vec3> out;
+    for (const glm::vec3& n : mesh.normals) {
+        bool seen = false;
+        for (const glm::vec3& d : out) seen = seen || glm::length(n - d) < kSameNormal;
+        if (!seen) out.push_back(n);
+    }
+    return out;
+}
+
+glm::vec3 triangleNormal(const Mesh& mesh, size_t t) {
+    const glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
+    const glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+    return glm::normalize(glm::cross(b - a, c - a));
+}
+
+glm::vec3 triangleCentroid(const Mesh& mesh, size_t t) {
+    return (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
+            mesh.positions[mesh.indices[3 * t + 2]]) / 3.0f;
+}
+
+// A unit cube centred at the origin, flat: six distinct normals, and every corner of every triangle
+// carries its triangle's geometric normal (counter-clockwise winding), which points away from the centre.
+void expectFlatCube(const Scene& scene) {
+    ASSERT_EQ(scene.objects.size(), 1u);
+    const Mesh& mesh = scene.meshes[scene.objects[0].mesh];
+    ASSERT_EQ(mesh.indices.size(), 36u);
+    EXPECT_EQ(distinctNormals(mesh).size(), 6u);
+    for (size_t t = 0; t < 12; ++t) {
+        const glm::vec3 geometric = triangleNormal(mesh, t);
+        // Outward: along the face's centroid direction, which for a cube face is its axis.
+        EXPECT_GT(glm::dot(geometric, glm::normalize(triangleCentroid(mesh, t))), 0.7f) << "triangle " << t;
+        for (int k = 0; k < 3; ++k)
+            EXPECT_LT(glm::length(mesh.normals[mesh.indices[3 * t + k]] - geometric), kSameNormal)
+                << "triangle " << t << " corner " << k;
+    }
+}
+
+std::string cubeGltf(bool withNormals) {
+    // Eight shared vertices and 36 indices (the same winding as kCubeObj): smooth if normals were
+    // averaged over shared vertices, as bounce did before.
+    const float p[24] = {-0.5f, -0.5f, -0.5f, 0.5f, -0.5f, -0.5f, 0.5f, 0.5f, -0.5f, -0.5f, 0.5f, -0.5f,
+                         -0.5f, -0.5f, 0.5f,  0.5f, -0.5f, 0.5f,  0.5f, 0.5f, 0.5f,  -0.5f, 0.5f, 0.5f};
+    const uint16_t quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+    std::vector<uint16_t> indices;
+    for (const auto& q : quads) indices.insert(indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+    std::string buffer(reinterpret_cast<const char*>(p), sizeof p);
+    if (withNormals) {
+        std::vector<float> n(p, p + 24);  // corner directions: smooth normals given explicitly
+        for (float& x : n) x /= std::sqrt(0.75f);
+        buffer.append(reinterpret_cast<const char*>(n.data()), n.size() * sizeof(float));
+    }
+    const size_t indexOffset = buffer.size();
+    buffer.append(reinterpret_cast<const char*>(indices.data()), indices.size() * sizeof(uint16_t));
+    const std::string normalAttribute = withNormals ? R"(, "NORMAL": 2)" : "";
+    const std::string normalView = withNormals ? R"(, {"buffer": 0, "byteOffset": 96, "byteLength": 96})" : "";
+    const std::string normalAccessor =
+        withNormals ? R"(, {"bufferView": 2, "componentType": 5126, "count": 8, "type": "VEC3"})" : "";
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"name": "cube", "mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0)" + normalAttribute + R"(}, "indices": 1}]}],
+      "buffers": [{"byteLength": )" + std::to_string(buffer.size()) +
+           R"(, "uri": "data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+                      {"buffer": 0, "byteOffset": )" + std::to_string(indexOffset) + R"(, "byteLength": 72})" +
+           normalView + R"(],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                     "min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]},
+                    {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"})" +
+           normalAccessor + "]}";
+}
+
+}  // namespace
+
+TEST(ModelNormals, ObjWithoutNormalsIsFlat) {
+    Expected<Scene> scene = loadScene(writeFile("normals/flat.obj", kCubeObj).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    expectFlatCube(*scene);
+    // Each face's two triangles share its four corners: 24 vertices, not 36.
+    EXPECT_EQ(scene->meshes[0].positions.size(), 24u);
+}
+
+TEST(ModelNormals, ObjSmoothingGroupOffIsFlat) {
+    // "s 0" and "s off" both mean no smoothing group.
+    Expected<Scene> zero = loadScene(writeFile("normals/s0.obj", std::string("s 0\n") + kCubeObj).string());
+    ASSERT_TRUE(zero.ok()) << zero.error().message;
+    expectFlatCube(*zero);
+    Expected<Scene> off = loadScene(writeFile("normals/soff.obj", std::string("s off\n") + kCubeObj).string());
+    ASSERT_TRUE(off.ok()) << off.error().message;
+    expectFlatCube(*off);
+}
+
+TEST(ModelNormals, ObjSmoothingGroupIsSmooth) {
+    Expected<Scene> scene = loadScene(writeFile("normals/smooth.obj", std::string("s 1\n") + kCubeObj).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Mesh& mesh = scene->meshes[scene->objects[0].mesh];
+    // One normal per corner: the three faces meeting there, weighted by their equal 90-degree angles,
+    // average to the corner's diagonal.
+    EXPECT_EQ(distinctNormals(mesh).size(), 8u);
+    EXPECT_EQ(mesh.positions.size(), 8u);
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        EXPECT_LT(glm::length(mesh.normals[i] - glm::normalize(mesh.positions[i])), kSameNormal) << "vertex " << i;
+}
+
+TEST(ModelNormals, ObjMixesSmoothingGroupsAndFlatFaces) {
+    // The three faces at corner (-,-,-) in group 1, then smoothing off for the other three, which are flat.
+    const std::string obj =
+        "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+        "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
+        "s 1\nf 1 4 3 2\nf 1 5 8 4\nf 1 2 6 5\n"
+        "s off\nf 5 6 7 8\nf 2 3 7 6\nf 4 8 7 3\n";
+    Expected<Scene> scene = loadScene(writeFile("normals/mixed.obj", obj).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Mesh& mesh = scene->meshes[scene->objects[0].mesh];
+    ASSERT_EQ(mesh.indices.size(), 36u);
+    size_t flatTriangles = 0;
+    for (size_t t = 0; t < 12; ++t) {
+        const glm::vec3 geometric = triangleNormal(mesh, t);
+        const bool positiveFace = glm::dot(geometric, glm::vec3(1.0f)) > 0.0f;  // +x, +y or +z
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = mesh.indices[3 * t + k];
+            if (positiveFace) {
+                EXPECT_LT(glm::length(mesh.normals[v] - geometric), kSameNormal) << "triangle " << t;
+            } else {
+                // Smooth: the mean of the group-1 faces (-x, -y, -z, all meeting the vertex at 90
+                // degrees) the vertex lies on; the flat faces it also lies on do not count.
+                const glm::vec3 p = mesh.positions[v];
+                const glm::vec3 expected = glm::normalize(-glm::vec3(p.x < 0.0f, p.y < 0.0f, p.z < 0.0f));
+                EXPECT_LT(glm::length(mesh.normals[v] - expected), kSameNormal) << "triangle " << t << " corner " << k;
+            }
+        }
+        flatTriangles += positiveFace;
+    }
+    EXPECT_EQ(flatTriangles, 6u);
+}
+
+TEST(ModelNormals, ObjExplicitNormalsAreKept) {
+    // Corner normals given with vn (the smooth cube's), no smoothing group: kept, not made flat.
+    std::string obj =
+        "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+        "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
+        "vn -1 -1 -1\nvn 1 -1 -1\nvn 1 1 -1\nvn -1 1 -1\nvn -1 -1 1\nvn 1 -1 1\nvn 1 1 1\nvn -1 1 1\n"
+        "f 1//1 4//4 3//3 2//2\nf 5//5 6//6 7//7 8//8\nf 1//1 5//5 8//8 4//4\n"
+        "f 2//2 3//3 7//7 6//6\nf 1//1 2//2 6//6 5//5\nf 4//4 8//8 7//7 3//3\n";
+    Expected<Scene> scene = loadScene(writeFile("normals/explicit.obj", obj).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Mesh& mesh = scene->meshes[scene->objects[0].mesh];
+    EXPECT_EQ(distinctNormals(mesh).size(), 8u);
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        EXPECT_LT(glm::length(mesh.normals[i] - glm::normalize(mesh.positions[i])), kSameNormal) << "vertex " << i;
+}
+
+TEST(ModelNormals, ObjRewriteKeepsUvsRelativeIndicesAndContinuations) {
+    // A face written with negative (relative) indices and texture coordinates, continued over two lines,
+    // and a face that already has normals next to it: the rewrite must keep the first's uvs and the
+    // second's normal.
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+        "vn 0 0 -1\n"
+        "o flat\nf -4/-4 -3/-3 \\\n -2/-2 -1/-1\n"
+        "o given\nf 1/1/1 3/3/1 2/2/1\n";
+    Expected<Scene> scene = loadScene(writeFile("normals/relative.obj", obj).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Object* flat = findObject(*scene, "flat");
+    const Object* given = findObject(*scene, "given");
+    ASSERT_TRUE(flat && given);
+    const Mesh& quad = scene->meshes[flat->mesh];
+    EXPECT_EQ(quad.indices.size(), 6u);
+    ASSERT_EQ(quad.uvs.size(), quad.positions.size());
+    for (size_t i = 0; i < quad.positions.size(); ++i) {
+        EXPECT_NEAR(quad.normals[i].z, 1.0f, 1e-6f);  // counter-clockwise seen from +z
+        EXPECT_NEAR(quad.uvs[i].x, quad.positions[i].x, 1e-6f);
+        EXPECT_NEAR(quad.uvs[i].y, 1.0f - quad.positions[i].y, 1e-6f);  // FlipUVs
+    }
+    const Mesh& tri = scene->meshes[given->mesh];
+    for (const glm::vec3& n : tri.normals) EXPECT_NEAR(n.z, -1.0f, 1e-6f);
+}
+
+TEST(ModelNormals, GltfWithoutNormalsIsFlat) {
+    Expected<Scene> scene = loadScene(writeFile("normals/flat.gltf", cubeGltf(false)).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    expectFlatCube(*scene);
+    EXPECT_EQ(scene->meshes[0].positions.size(), 24u);  // corners shared within a face only
+}
+
+TEST(ModelNormals, GltfExplicitNormalsAreKept) {
+    Expected<Scene> scene = loadScene(writeFile("normals/smooth.gltf", cubeGltf(true)).string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Mesh& mesh = scene->meshes[scene->objects[0].mesh];
+    EXPECT_EQ(mesh.positions.size(), 8u);
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        EXPECT_LT(glm::length(mesh.normals[i] - glm::normalize(mesh.positions[i])), kSameNormal) << "vertex " << i;
+}
+
 TEST(JsonScene, PlacesModelsLightsCameraAndAnimations) {
     writeFile("json/models/cube.obj", kCubeObj);
     const fs::path p = writeFile("json/scene.json", R"({
