@@ -4,8 +4,8 @@
 // [p, p + 1]; the grid is [0, N)^3. Mirrors src/techniques/vct/VoxelOverlap.cpp line for line (the
 // unit tests check that code against a brute-force test; the GPU tests check this file against it).
 // Errata applied (docs/techniques/vct.md): the printed listings test YZ and ZX with p.xy (here p.yz,
-// p.zx); the conservative depth range is [floor(zlo), floor(zhi)], the thin one the voxels whose
-// centre segment along the depth axis the plane crosses, [ceil(zc - 1), floor(zc)] for the plane's
+// p.zx); the conservative depth range is [floor(zlo), floor(zhi)], the thin one the voxel whose
+// centre segment [k, k + 1) along the depth axis the plane crosses, k = floor(zc) for the plane's
 // depth zc at the column centre (the printed floor/ceil pair would make every sheet two voxels thick).
 #ifndef BOUNCE_VCT_OVERLAP_GLSL
 #define BOUNCE_VCT_OVERLAP_GLSL
@@ -95,8 +95,8 @@ ivec2 voxDepthRange(VoxTri t, vec2 p, bool conservative) {
         zmax = int(floor((base + t.dB) / t.n.z));
     } else {
         float zc = (base + t.dA) / t.n.z;
-        zmin = int(ceil(zc - 1.0));
-        zmax = int(floor(zc));
+        zmin = int(floor(zc));
+        zmax = zmin;
     }
     return ivec2(max(zmin, t.bmin.z), min(zmax, t.bmax.z));
 }
