@@ -26,6 +26,7 @@ flat out int gf_axis;
 flat out vec3 gf_n;
 flat out vec2 gf_dAB;
 flat out ivec2 gf_zBounds;
+flat out ivec4 gf_xyBounds;  // the triangle's voxel box in the dominant plane (min.xy, max.xy)
 flat out vec2 gf_nXY[3];
 flat out vec2 gf_nYZ[3];
 flat out vec2 gf_nZX[3];
@@ -73,6 +74,7 @@ void main() {
         gf_n = t.n;
         gf_dAB = vec2(t.dA, t.dB);
         gf_zBounds = ivec2(t.bmin.z, t.bmax.z);
+        gf_xyBounds = ivec4(t.bmin.xy, t.bmax.xy);
         gf_nXY = t.nXY;
         gf_nYZ = t.nYZ;
         gf_nZX = t.nZX;
