@@ -27,4 +27,15 @@ Expected<double> lightLeakScore(const Image& radiance, const PixelMask& darkRoom
     return dark / lit;
 }
 
+TwoRoomsMasks twoRoomsMasks(const Image& worldPositions, float wallHalfThickness) {
+    TwoRoomsMasks m{PixelMask(worldPositions.width(), worldPositions.height()), PixelMask(worldPositions.width(), worldPositions.height())};
+    for (int y = 0; y < worldPositions.height(); ++y)
+        for (int x = 0; x < worldPositions.width(); ++x) {
+            const float px = worldPositions.at(x, y).r;
+            m.dark.set(x, y, px > wallHalfThickness);
+            m.lit.set(x, y, px < -wallHalfThickness);
+        }
+    return m;
+}
+
 }  // namespace bounce

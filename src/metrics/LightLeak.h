@@ -12,4 +12,12 @@ namespace bounce {
 // Luminance is the Rec. 709 luminance of the linear image.
 Expected<double> lightLeakScore(const Image& radiance, const PixelMask& darkRoom, const PixelMask& litRoom);
 
+// The rooms of `two-rooms` from an image of world positions (a G-buffer's): the dark room is x >
+// wallHalfThickness, the lit room x < -wallHalfThickness (the shared wall is x in [-h, h]); pixels at
+// the origin (no surface) belong to neither.
+struct TwoRoomsMasks {
+    PixelMask dark, lit;
+};
+TwoRoomsMasks twoRoomsMasks(const Image& worldPositions, float wallHalfThickness);
+
 }  // namespace bounce

@@ -87,7 +87,7 @@ FrameStats Pipeline::renderFrame(uint32_t frame, const Camera* cameraOverride) {
         auto s = m_timers.scope("gbuffer");
         m_gbuffer.render(m_drawer, view, m_lights);
     }
-    {
+    if (!m_technique->ownsDirect()) {  // a technique that owns its direct light writes m_direct itself
         auto s = m_timers.scope("direct");
         m_frameUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_FRAME);
         m_directLighting.render(m_gbuffer, m_lights, m_direct);

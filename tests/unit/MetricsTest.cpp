@@ -592,3 +592,17 @@ TEST(LightLeak, RatioOfMeanLuminances) {
     EXPECT_FALSE(lightLeakScore(img, PixelMask(3, 2, true), lit).ok());  // wrong size
     EXPECT_FALSE(lightLeakScore(Image(4, 2), dark, lit).ok());      // black lit room
 }
+
+TEST(LightLeak, TwoRoomsMasksSplitAtTheWall) {
+    // x positions -1, -0.005 (inside the wall), 0 (no surface), 0.5: one lit, one dark pixel.
+    Image positions(4, 1);
+    positions.at(0, 0) = {-1.0f, 0.0f, 0.0f};
+    positions.at(1, 0) = {-0.005f, 0.0f, 0.0f};
+    positions.at(2, 0) = {0.0f, 0.0f, 0.0f};
+    positions.at(3, 0) = {0.5f, 0.2f, 0.0f};
+    const TwoRoomsMasks m = twoRoomsMasks(positions, 0.01f);
+    EXPECT_EQ(m.lit.count(), 1u);
+    EXPECT_EQ(m.dark.count(), 1u);
+    EXPECT_TRUE(m.lit.inside(0, 0));
+    EXPECT_TRUE(m.dark.inside(3, 0));
+}

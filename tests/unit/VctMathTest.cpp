@@ -739,3 +739,16 @@ TEST(VctPack, RunningAverage) {
     for (int i = 0; i < 300; ++i) v = averageRgba8(v, glm::vec3(0.25f, 0.5f, 0.75f));
     EXPECT_EQ(unpackRgbCount(v), glm::vec4(64, 128, 191, 255));  // round(63.75), round(127.5), round(191.25)
 }
+
+TEST(VctShMip, ChildMatricesEqualTheSixFaceSum) {
+    // The GPU mip multiplies each child's coefficients by shMipChildMatrix; it must be the literal
+    // per-face sum of Eq. 5.9 for any coefficients (float sums of 6 terms: 1e-5 relative).
+    const glm::vec4 v(0.7f, -0.3f, 0.2f, 0.45f);
+    for (int i = 0; i < 8; ++i) {
+        std::array<std::optional<bounce::vct::ShRgb>, 8> one;
+        one[static_cast<size_t>(i)] = bounce::vct::ShRgb{v, v, v};
+        const glm::vec4 literal = bounce::vct::shMipParent(one, false).r;
+        const glm::vec4 viaMatrix = bounce::vct::shMipChildMatrix(i) * v;
+        for (int k = 0; k < 4; ++k) EXPECT_NEAR(viaMatrix[k], literal[k], 1e-5f * (1.0f + std::abs(literal[k]))) << i << " " << k;
+    }
+}

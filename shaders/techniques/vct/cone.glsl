@@ -17,6 +17,9 @@
 layout(binding = BINDING_TEX_VCT_ALPHA) uniform sampler3D s_alpha;
 layout(binding = BINDING_TEX_VCT_VOLUME0) uniform sampler3D s_vol[12];
 
+// World position -> volume texture coordinates.
+vec3 toTexture(vec3 world) { return (u_vct.voxelFromWorld * vec4(world, 1.0)).xyz * u_vct.grid.y; }
+
 vec4 voxelFetch(vec3 pos, float lod, vec3 dir) {
     float range = u_vct.range.x;
 #if VCT_STORAGE == VCT_STORAGE_ISO

@@ -168,6 +168,12 @@ vec4 childSh(ivec3 c) {
 #endif
 }
 
+// Eq. 5.9 is linear in a child's coefficients V: the six-face sum for the child in octant i,
+// sum_f Omega_f <SH(d_if), V> SH_cos(d_if), is the fixed matrix u_shMip[i] V (built on the CPU from
+// the same formula, techniques/vct/ShMath.cpp; the GPU test compares this pass with the literal
+// per-face sum).
+uniform mat4 u_shMip[8];
+
 void processVoxel(ivec3 q) {
     vec4 sum = vec4(0.0);
     int activeChildren = 0;
@@ -175,18 +181,7 @@ void processVoxel(ivec3 q) {
         ivec3 c = childOf(q, i);
         if (texelFetch(s_alpha, c, u_level - 1).a <= 0.0) continue;
         ++activeChildren;
-        vec4 v = childSh(c);
-        // Child centre (+-1)^3 in a parent of edge 4 centred at the origin.
-        vec3 centre = vec3(float(i & 1) * 2.0 - 1.0, float((i >> 1) & 1) * 2.0 - 1.0, float((i >> 2) & 1) * 2.0 - 1.0);
-        for (int f = 0; f < 6; ++f) {
-            int axis = f >> 1;
-            float side = (f & 1) == 0 ? 1.0 : -1.0;
-            vec3 faceCentre = vec3(0.0);
-            faceCentre[axis] = 2.0 * side;
-            vec3 d = normalize(faceCentre - centre);
-            float omega = centre[axis] * side > 0.0 ? kShNearFaceSolidAngle : kShFarFaceSolidAngle;
-            sum += omega * dot(shBasis(d), v) * shCosineLobe(d);
-        }
+        sum += u_shMip[i] * childSh(c);
     }
     vec4 parent = activeChildren > 0 ? sum / (float(activeChildren) * kPi) : vec4(0.0);
 #if VCT_STORAGE == VCT_STORAGE_SH_F32

@@ -26,7 +26,6 @@ const float kConeRatio60 = 1.0;  // sin(30) / (1 - sin(30))
 // Narrowest specular cone: 1 degree (a 0-degree cone is a ray, section 6.5; the step is then one voxel).
 const float kMinSpecularAperture = 0.0174533;  // radians
 
-vec3 toTexture(vec3 world) { return (u_vct.voxelFromWorld * vec4(world, 1.0)).xyz * u_vct.grid.y; }
 
 // Marches the camera ray through level `level`; returns (value, hit).
 vec4 debugMarch(vec3 eyeTex, vec3 dirTex, int level, bool radiance) {

@@ -100,4 +100,14 @@ ShRgb shMipParent(const std::array<std::optional<ShRgb>, 8>& children, bool divi
     return ShRgb{sum.r * scale, sum.g * scale, sum.b * scale};
 }
 
+glm::mat4 shMipChildMatrix(int child) {
+    glm::mat4 m(0.0f);
+    for (int f = 0; f < 6; ++f) {
+        const glm::vec3 d = childFaceDirection(child, f);
+        const float omega = isNearFace(child, f) ? kShNearFaceSolidAngle : kShFarFaceSolidAngle;
+        m += omega * glm::outerProduct(shCosineLobe(d), shBasis(d));
+    }
+    return m;
+}
+
 }  // namespace bounce::vct

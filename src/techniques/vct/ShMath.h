@@ -9,6 +9,7 @@
 // What a voxel's SH function means: V(w) = the radiance the voxel emits in direction w (the sampler
 // evaluates it at minus the cone direction, Fig. B.3).
 #include <glm/vec3.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
 #include <array>
@@ -61,5 +62,10 @@ ShRgb shProjectConstantRgb(glm::vec3 radiance);
 // integral, which makes 8 identical isotropic children of radiance L give a parent of radiance L;
 // without it (the literal Eq. 5.9) every level multiplies radiance by pi (spec 2.9 inference).
 ShRgb shMipParent(const std::array<std::optional<ShRgb>, 8>& children, bool divideByPi = true);
+
+// Eq. 5.9's per-child term is linear in the child's coefficients V: sum over the six faces of
+// Omega_f <SH(d_f), V> SH_cos(d_f) = M_child V with M_child = sum_f Omega_f SH_cos(d_f) SH(d_f)^T
+// (glm column-major). The GPU mip multiplies by these eight matrices.
+glm::mat4 shMipChildMatrix(int child);
 
 }  // namespace bounce::vct

@@ -27,8 +27,9 @@
 //     the active-voxel lists (point lists drawn indirectly, rasterizer off); dense mode every voxel.
 //  4. "diffuse-ao": six 60-degree cones per pixel (Eq. 6.8/6.9), generic (Fig. B.4) or specialised
 //     (Fig. B.5) tracer; "specular": one cone about the mirror direction, aperture from roughness.
-// The direct light stays the shared pass (shadow maps): the thesis's cone-traced shadow (Eq. 6.3)
-// is not used for the pixel direct term here (docs/techniques/vct.md says why).
+//  5. "shadow" (coneShadows on): the pixel's direct light, shadowed by one cone per light through the
+//     volume (Eq. 6.3), replaces the shared shadow-mapped pass (the technique then owns the direct
+//     light). Off by default: the shared pass is what every other technique uses.
 //
 // Deviations (all in docs/techniques/vct.md): radiance is HDR, so the 8-bit formats store it
 // divided by a range (auto: the brightest reflected radiance of a fixed set of surface samples under
@@ -42,6 +43,7 @@
 #include "core/Log.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "techniques/vct/ShMath.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -135,6 +137,8 @@ void VctTechnique::visitSettings(SettingsVisitor& v) {
     v.field("maxDistance", m_maxDistance, "cone length, metres; 0 = the grid's diagonal", 0.0f, 1.0e6f);
     v.field("aoDistance", m_aoDistance, "distance after which the AO accessibility is frozen (aoDist), metres; 0 = a quarter of the grid's side", 0.0f, 1.0e6f);
     v.field("specular", m_specular, "trace one specular cone about the mirror direction for surfaces with F0 > 0 (section 6.5)");
+    v.field("coneShadows", m_coneShadows, "shadow the pixel's direct light with one cone per light through the voxel volume (Eq. 6.3, the thesis's results) instead of the shared shadow maps; vct then owns the direct light");
+    v.field("shadowAperture", m_shadowAperture, "shadow cone aperture, degrees (thesis Fig. 6.6 shows 0, 2, 4, 6; 0 = a ray marched at LOD 0)", 0.0f, 60.0f);
     v.field("specularApertureScale", m_specularApertureScale, "specular cone aperture = 2 atan(scale * alpha), alpha = roughness^2 (the thesis gives no mapping)", 0.0f, 100.0f);
     v.field("radianceRange", m_radianceRange, "radiance mapped to 1.0 in the 8-bit formats, W/(m^2 sr); 0 = automatic per frame", 0.0f, 1.0e9f);
     v.field("debugView", m_debugView, "replace the indirect output: occupancy or radiance of the first voxel on each camera ray at debugLevel, ao (accessibility of the six cones), slice (radiance of z = debugSlice at debugLevel)", kDebugViews);
@@ -180,7 +184,10 @@ Expected<void> VctTechnique::buildPrograms() {
     if (m_voxelizer == "fragment") {
         BOUNCE_TRY(m_voxFragment, gl::Program::build({"vct.voxelize.fragment", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, "techniques/vct/voxelize_fragment.geom"}, {GL_FRAGMENT_SHADER, "techniques/vct/voxelize_fragment.frag"}}, defines}));
     }
-    if (m_binary) return {};
+    if (m_binary) {
+        if (m_coneShadows) return makeError("settings binary=true and coneShadows=true: a binary volume holds no opacity mip to trace shadows through");
+        return {};
+    }
     auto pass = [&](int id, bool sparse, gl::Program& out) -> Expected<void> {
         const std::string label = fmt::format("vct.pass{}.{}", id, sparse ? "sparse" : "dense");
         auto d = with({{"VCT_PASS", std::to_string(id)}, {"VCT_SPARSE", sparse ? "1" : "0"}});
@@ -201,10 +208,21 @@ Expected<void> VctTechnique::buildPrograms() {
         const int id = storage == VCT_STORAGE_ANISO ? 3 : 4;
         BOUNCE_TRY_VOID(pass(id, false, m_mipDense));
         if (m_sparseMip) BOUNCE_TRY_VOID(pass(id, true, m_mipSparse));
+        if (id == 4) {
+            for (int i = 0; i < 8; ++i) {
+                const std::string name = fmt::format("u_shMip[{}]", i);
+                m_mipDense.set(name, vct::shMipChildMatrix(i));
+                if (m_sparseMip) m_mipSparse.set(name, vct::shMipChildMatrix(i));
+            }
+        }
     }
     auto traceDefines = [&](int part) { return with({{"VCT_PART", std::to_string(part)}}); };
     BOUNCE_TRY(m_traceDiffuse, gl::Program::build({"vct.trace.diffuse", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "techniques/vct/trace.frag"}}, traceDefines(1)}));
     BOUNCE_TRY(m_traceSpecular, gl::Program::build({"vct.trace.specular", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "techniques/vct/trace.frag"}}, traceDefines(2)}));
+    if (m_coneShadows) {
+        BOUNCE_TRY(m_emission, gl::Program::build({"vct.emission", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "render/emission.frag"}}}));
+        BOUNCE_TRY(m_directCone, gl::Program::build({"vct.direct.cone", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "techniques/vct/direct_cone.frag"}}, defines}));
+    }
     return {};
 }
 
@@ -399,7 +417,8 @@ void VctTechnique::updateUniforms(FrameContext& ctx) {
     const float maxDist = m_maxDistance > 0.0f ? m_maxDistance : side * std::sqrt(3.0f);
     const float aoDist = m_aoDistance > 0.0f ? m_aoDistance : 0.25f * side;
     u.cone = glm::vec4(m_startOffset, std::max(m_maxStartOffset, m_startOffset), maxDist, aoDist);
-    u.cone2 = glm::vec4(m_specular ? 1.0f : 0.0f, m_specularApertureScale, m_tracer == "specialised" ? 1.0f : 0.0f, 0.0f);
+    u.cone2 = glm::vec4(m_specular ? 1.0f : 0.0f, m_specularApertureScale, m_tracer == "specialised" ? 1.0f : 0.0f,
+                        glm::radians(m_shadowAperture));
     u.debug = glm::vec4(static_cast<float>(debugIndex(m_debugView)), static_cast<float>(std::min(m_debugLevel, m_levels - 1)), m_debugSlice,
                         m_sparseActive ? 1.0f : 0.0f);
     for (size_t i = 0; i < VCT_MAX_LIGHTS; ++i) u.lights[i] = i < ctx.lights.count() ? ctx.lights.light(i) : gpu::LightGpu{};
@@ -611,6 +630,33 @@ void VctTechnique::trace(FrameContext& ctx, const gl::Texture& indirect) {
     }
 }
 
+void VctTechnique::coneShadowedDirect(FrameContext& ctx) {
+    auto s = ctx.timers.scope("shadow");
+    m_traceFbo.attach(GL_COLOR_ATTACHMENT0, ctx.direct);
+    m_traceFbo.setDrawBuffers(1);
+    BOUNCE_CHECK(m_traceFbo.complete(), "vct direct framebuffer");
+    m_traceFbo.bind();
+    glViewport(0, 0, ctx.size.x, ctx.size.y);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    ctx.gbuffer.bind();
+    bindVolumes();
+    m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+    gl::Context::current()->bindEmptyVertexArray();
+    m_emission.use();  // emitted radiance first (unblended), as render/DirectLighting
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    m_directCone.use();
+    for (size_t i = 0; i < ctx.lights.count(); ++i) {
+        ctx.lights.bind(i);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_BLEND);
+}
+
 void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     updateUniforms(ctx);
     const bool sparse = m_sparseActive && !m_binary;
@@ -628,6 +674,7 @@ void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             auto s = ctx.timers.scope("mipmap");
             mipmap(sparse);
         }
+        if (m_coneShadows) coneShadowedDirect(ctx);
         trace(ctx, indirect);
     } else {
         m_traceFbo.attach(GL_COLOR_ATTACHMENT0, indirect);

@@ -16,6 +16,8 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    // With coneShadows the pixel's direct light is shadowed by a cone per light (Eq. 6.3).
+    bool ownsDirect() const override { return m_coneShadows; }
 
     static constexpr std::array<std::string_view, 3> kVoxelizers{"hybrid", "triangle", "fragment"};
     static constexpr std::array<std::string_view, 2> kSeparabilities{"conservative", "thin"};
@@ -54,6 +56,7 @@ private:
     void mipmap(bool sparse);
     void runPass(gl::Program& dense, gl::Program& sparse, bool sparseMode, int level, int listIn, int listOut);
     void trace(FrameContext& ctx, const gl::Texture& indirect);
+    void coneShadowedDirect(FrameContext& ctx);
     void bindVolumes() const;
 
     // Settings (docs/techniques/vct.md gives the sources of the defaults).
@@ -71,6 +74,8 @@ private:
     float m_maxDistance = 0.0f;
     float m_aoDistance = 0.0f;
     bool m_specular = true;
+    bool m_coneShadows = false;
+    float m_shadowAperture = 2.0f;  // degrees
     float m_specularApertureScale = 1.0f;
     float m_radianceRange = 0.0f;
     std::string m_debugView{"none"};
@@ -92,7 +97,7 @@ private:
     gl::Framebuffer m_voxelFbo, m_traceFbo;
     gl::Program m_voxTriangle, m_voxHybrid, m_voxFragment, m_voxLarge;
     gl::Program m_postDense, m_postSparse, m_mipIsoDense, m_mipIsoSparse, m_mipDense, m_mipSparse;
-    gl::Program m_traceDiffuse, m_traceSpecular;
+    gl::Program m_traceDiffuse, m_traceSpecular, m_emission, m_directCone;
     const render::SceneGpu* m_sceneGpu = nullptr;
     // Surface samples for the automatic radiance range (object space).
     struct RangeSample {

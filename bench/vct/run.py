@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""Benchmarks of `vct` (Rauwendaal 2013) through the CLI's run records, written as one raw record.
+
+Usage: bench/vct/run.py [BOUNCE] [--quick]    (BOUNCE defaults to build/src/app/bounce)
+
+Every comparison is interleaved (A B C A B C ...) with `--reps` repetitions; each run renders
+`--frames` frames and the run record's median over frames is taken (frame 0 also compiles the
+shaders on llvmpipe, the median of 5 frames skips it). The raw record goes to
+bench/results/vct-<date>.json with the command, git commit, date and machine; bench/tables.py turns
+it into the README's tables. Absolute times on llvmpipe are indicative only; the ratios are the
+results (thesis Table 4.1 and ch. 5-7 claims, docs/techniques/vct.md).
+"""
+import datetime
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def run_record(bounce, scene, settings, size, frames, scene_params=None, component="indirect"):
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "o.exr")
+        stats = os.path.join(tmp, "run.json")
+        cmd = [bounce, "render", "--scene", scene, "--technique", settings.get("technique", "vct"), "--size",
+               f"{size}x{size}", "--frames", str(frames), "--component", component, "--out", out, "--stats", stats]
+        for p in scene_params or []:
+            cmd += ["--scene-param", p]
+        for k, v in settings.items():
+            if k != "technique":
+                cmd += ["--set", f"{k}={v}"]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        with open(stats) as f:
+            rec = json.load(f)
+        return rec, cmd
+
+
+def stage(rec, name):
+    return rec["median_ms"].get(name, 0.0)
+
+
+def interleaved(bounce, cases, reps, frames, size):
+    """cases: list of (label, scene, settings, scene_params). Returns label -> list of run records."""
+    runs = {label: [] for label, *_ in cases}
+    cmds = {}
+    for _ in range(reps):
+        for label, scene, settings, params in cases:
+            rec, cmd = run_record(bounce, scene, settings, size, frames, params)
+            runs[label].append(rec)
+            cmds[label] = " ".join(os.path.relpath(c, ROOT) if c == bounce else c for c in cmd)
+    return runs, cmds
+
+
+def summary(values):
+    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
+
+
+def compare(bounce, test, ref):
+    out = subprocess.run([bounce, "compare", test, ref, "--json"], check=True, capture_output=True, text=True).stdout
+    m = json.loads(out)["metrics"]
+    return {"relMse": m["relMse"], "flipLdr": m["flipLdr"], "mae": m["mae"]}
+
+
+def main():
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    quick = "--quick" in sys.argv
+    bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
+    reps = 2 if quick else 3
+    frames = 5
+    record = {
+        "benchmark": "vct",
+        "command": " ".join(["bench/vct/run.py"] + sys.argv[1:]),
+        "commit": subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
+        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "machine": f"{platform.node()} {platform.machine()} {os.cpu_count()} cores",
+        "reps": reps,
+        "frames": frames,
+        "results": {},
+    }
+    info = subprocess.run([bounce, "info"], capture_output=True, text=True).stdout.splitlines()
+    record["gpu"] = " ".join(l.split(None, 1)[1] for l in info if l.startswith("renderer"))
+
+    # R1-R5: voxelizer time over resolution and scene (binary, thin: the Table 4.1 set-up).
+    vox = {}
+    for scene, params in [("cornell-box", []), ("atrium", ["triangles=25000"]), ("atrium", ["triangles=100000"])]:
+        for res in ([64, 128] if quick else [64, 128, 256]):
+            cases = [(v, scene, {"voxelizer": v, "binary": "true", "separability": "thin", "resolution": str(res)}, params)
+                     for v in ("triangle", "fragment", "hybrid")]
+            runs, cmds = interleaved(bounce, cases, reps, frames, 64)
+            key = f"{scene}{'-' + params[0] if params else ''}@{res}"
+            entry = {}
+            for v in ("triangle", "fragment", "hybrid"):
+                recs = runs[v]
+                entry[v] = {"voxelize_ms": summary([stage(r, "vct/voxelize") for r in recs]), "command": cmds[v]}
+                if v == "hybrid":
+                    entry[v]["pass1_ms"] = summary([stage(r, "vct/voxelize/pass1") for r in recs])
+                    entry[v]["pass2_ms"] = summary([stage(r, "vct/voxelize/pass2") for r in recs])
+                    c = recs[0]["frames"][-1]["counters"]
+                    entry[v]["trianglesPass1"] = c["trianglesPass1"]
+                    entry[v]["trianglesPass2"] = c["trianglesPass2"]
+            entry["triangles"] = runs["hybrid"][0]["scene"]["triangles"]
+            vox[key] = entry
+            print(key, {v: round(entry[v]["voxelize_ms"]["median"], 1) for v in ("triangle", "fragment", "hybrid")}, flush=True)
+    record["results"]["voxelizers"] = vox
+
+    # R8, R11, R12, frame time: per storage on cornell-box, 256^2, 64^3, both diffuse tracers.
+    storages = ("iso", "aniso", "sh-f32", "sh-u8")
+    cases = []
+    for s in storages:
+        for t in ("specialised", "generic"):
+            cases.append((f"{s}/{t}", "cornell-box", {"storage": s, "tracer": t, "resolution": "64"}, []))
+    runs, cmds = interleaved(bounce, cases, reps, frames, 256)
+    st = {}
+    for label, recs in runs.items():
+        st[label] = {name: summary([stage(r, key) for r in recs]) for name, key in
+                     [("frame_ms", "frame"), ("voxelize_ms", "vct/voxelize"), ("post_ms", "vct/post-voxelize"),
+                      ("mipmap_ms", "vct/mipmap"), ("diffuse_ao_ms", "vct/diffuse-ao"), ("specular_ms", "vct/specular")]}
+        st[label]["bytesPerVoxel"] = recs[0]["frames"][-1]["counters"]["bytesPerVoxel"]
+        st[label]["activeVoxels"] = recs[0]["frames"][-1]["counters"]["activeVoxels"]
+        st[label]["command"] = cmds[label]
+    record["results"]["storages"] = st
+    print("storages", {k: round(v["frame_ms"]["median"], 1) for k, v in st.items()}, flush=True)
+
+    # Mipmap scaling with N (SH vs aniso, R11), 256^2.
+    mip = {}
+    for res in ([64, 128] if quick else [64, 128, 256]):
+        cases = [(s, "cornell-box", {"storage": s, "resolution": str(res)}, []) for s in ("aniso", "sh-f32", "sh-u8")]
+        runs, cmds = interleaved(bounce, cases, reps, frames, 128)
+        mip[str(res)] = {s: {"mipmap_ms": summary([stage(r, "vct/mipmap") for r in recs]),
+                             "voxelize_ms": summary([stage(r, "vct/voxelize") for r in recs]), "command": cmds[s]}
+                         for s, recs in runs.items()}
+    record["results"]["mipmap"] = mip
+
+    # Quality: indirect vs bounce reference --bounces 1 --indirect-only, 128^2.
+    quality = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene, frame_count in [("cornell-box", 1), ("cornell-box-dynamic", 31), ("atrium", 1)]:
+            ref = os.path.join(tmp, f"{scene}-ref.exr")
+            subprocess.run([bounce, "reference", "--scene", scene, "--size", "128x128", "--spp", "512", "--bounces", "1",
+                            "--indirect-only", "--frame", str(frame_count - 1), "--out", ref], check=True,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            q = {}
+            techniques = [("vct/" + s, {"technique": "vct", "storage": s}) for s in storages]
+            techniques += [(t, {"technique": t}) for t in ("rsm", "isr", "iir")]
+            for label, settings in techniques:
+                out = os.path.join(tmp, f"{scene}-{label.replace('/', '-')}.exr")
+                cmd = [bounce, "render", "--scene", scene, "--technique", settings["technique"], "--size", "128x128",
+                       "--frames", str(frame_count), "--component", "indirect", "--out", out]
+                for k, v in settings.items():
+                    if k != "technique":
+                        cmd += ["--set", f"{k}={v}"]
+                subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                q[label] = compare(bounce, out, ref)
+            quality[f"{scene}@frame{frame_count - 1}"] = q
+            print(scene, {k: round(v["relMse"], 3) for k, v in q.items()}, flush=True)
+    record["results"]["quality"] = quality
+    record["results"]["quality_reference"] = "bounce reference --size 128x128 --spp 512 --bounces 1 --indirect-only --frame F"
+
+    os.makedirs(os.path.join(ROOT, "bench/results"), exist_ok=True)
+    path = os.path.join(ROOT, "bench/results", f"vct-{record['date'][:10]}.json")
+    with open(path + ".tmp", "w") as f:
+        json.dump(record, f, indent=1)
+    os.replace(path + ".tmp", path)
+    print("wrote", os.path.relpath(path, ROOT))
+
+
+if __name__ == "__main__":
+    main()
