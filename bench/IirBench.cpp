@@ -10,6 +10,7 @@
 // Every benchmark renders one warm-up frame (the first frame fills the VPL budget in both modes),
 // then times kFrames frames of the animation. Images are 256^2 (the paper: 1024x768); llvmpipe
 // absolute times are indicative only.
+#include "BenchSupport.h"
 #include "gpu/Context.h"
 #include "metrics/ErrorMetrics.h"
 #include "metrics/FlickerMeter.h"
@@ -34,18 +35,7 @@ constexpr uint32_t kFrameStep = 3;       // frames apart: the light moves a few 
 constexpr uint32_t kManagementFrames = 16;  // R5 compares CPU times of ~1 ms: more frames
 constexpr double kAtriumTriangles = 20000;  // atrium detail; 100K makes the comparison run minutes long
 
-gl::Context* context() {
-    static std::unique_ptr<gl::Context> c;
-    if (!c) {
-        gl::ContextConfig config;
-        config.debugOutput = false;
-        auto made = gl::Context::createHeadless(config);
-        if (!made.ok()) return nullptr;
-        c = std::move(*made);
-    }
-    c->makeCurrent();
-    return c.get();
-}
+gl::Context* context() { return bench::context(); }
 
 struct Measured {
     double frameMs = 0.0;        // wall time of a frame, GPU wait included

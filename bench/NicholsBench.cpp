@@ -10,6 +10,7 @@
 //   BM_NicholsAtrium   isr frame time at 256^2 against atrium's triangle count (R3).
 // Run R1 and the errors with --benchmark_filter='NicholsR1|NicholsError' (a few minutes: the
 // million-VPL gather alone takes about two minutes at 64^2 on llvmpipe).
+#include "BenchSupport.h"
 #include "gpu/Context.h"
 #include "metrics/ErrorMetrics.h"
 #include "scene/SceneLoader.h"
@@ -27,14 +28,7 @@ namespace {
 
 using namespace bounce;
 
-gl::Context* context() {
-    static std::unique_ptr<gl::Context> c = [] {
-        auto made = gl::Context::createHeadless();
-        return made.ok() ? std::move(*made) : std::unique_ptr<gl::Context>();
-    }();
-    if (c) c->makeCurrent();
-    return c.get();
-}
+gl::Context* context() { return bench::context(); }
 
 std::unique_ptr<Pipeline> pipeline(const Scene& scene, const std::string& technique,
                                    const std::map<std::string, std::string>& settings, int size) {

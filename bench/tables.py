@@ -59,6 +59,17 @@ def vct_table(rec, path):
     for res, e in r["mipmap"].items():
         a, s, u = med(e["aniso"]["mipmap_ms"]), med(e["sh-f32"]["mipmap_ms"]), med(e["sh-u8"]["mipmap_ms"])
         lines.append(f"| {res} | {rng(e['aniso']['mipmap_ms'])} | {rng(e['sh-f32']['mipmap_ms'])} | {rng(e['sh-u8']['mipmap_ms'])} | {s / a:.2f} |")
+    if "cutoff" in r:
+        lines += ["", "Hybrid voxelization time over the cutoff (`atrium`, 100K triangles, 128³; thesis Figs. 4.16/4.17: a broad basin, optimum a few voxels²):", "",
+                  "| cutoff (voxels²) | triangles in pass 2 | voxelize ms | pass 1 | pass 2 |", "|---|---|---|---|---|"]
+        for c, e in r["cutoff"].items():
+            lines.append(f"| {c} | {int(e['trianglesPass2'])} | {rng(e['voxelize_ms'])} | {rng(e['pass1_ms'])} | {rng(e['pass2_ms'])} |")
+    if "shadowCone" in r:
+        lines += ["", "Shadow cone (Eq. 6.3) time over aperture, `cornell-box`, 256², 64³ (R13: falls as the aperture grows): " +
+                  ", ".join(f"{a}° {rng(e['shadow_ms'])} ms" for a, e in r["shadowCone"].items()) + "."]
+    if "lightLeak" in r:
+        lines += ["", f"`two-rooms` light-leak score (dark-room / lit-room mean luminance, 0 = no leak; `{r['lightLeakCommand']}`): " +
+                  ", ".join(f"`{k}` {v:.4f}" for k, v in r["lightLeak"].items()) + "."]
     lines += ["", f"Indirect light vs `{r['quality_reference']}`, 128², relMSE / LDR-FLIP:", ""]
     scenes = list(r["quality"].keys())
     lines += ["| technique | " + " | ".join(f"`{s}`" for s in scenes) + " |", "|---|" + "---|" * len(scenes)]

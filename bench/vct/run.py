@@ -135,10 +135,40 @@ def main():
                          for s, recs in runs.items()}
     record["results"]["mipmap"] = mip
 
+    # Figs. 4.16/4.17: hybrid time over the cutoff (atrium 100K triangles, 128^3, binary, thin).
+    cutoffs = [0.5, 1, 2, 4, 8, 16, 64] if not quick else [1, 4, 16]
+    cases = [(str(c), "atrium", {"voxelizer": "hybrid", "binary": "true", "separability": "thin", "resolution": "128",
+                                 "cutoff": str(c)}, ["triangles=100000"]) for c in cutoffs]
+    runs, cmds = interleaved(bounce, cases, reps, frames, 64)
+    record["results"]["cutoff"] = {c: {"voxelize_ms": summary([stage(r, "vct/voxelize") for r in recs]),
+                                       "pass1_ms": summary([stage(r, "vct/voxelize/pass1") for r in recs]),
+                                       "pass2_ms": summary([stage(r, "vct/voxelize/pass2") for r in recs]),
+                                       "trianglesPass2": recs[0]["frames"][-1]["counters"]["trianglesPass2"],
+                                       "command": cmds[c]} for c, recs in runs.items()}
+    print("cutoff", {c: round(v["voxelize_ms"]["median"], 1) for c, v in record["results"]["cutoff"].items()}, flush=True)
+
+    # Shadow cones (Eq. 6.3): time over aperture (R13) on cornell-box, 256^2, 64^3.
+    cases = [(str(a), "cornell-box", {"coneShadows": "true", "shadowAperture": str(a), "specular": "false"}, [])
+             for a in (0, 2, 4, 6, 10)]
+    runs, cmds = interleaved(bounce, cases, reps, frames, 256)
+    record["results"]["shadowCone"] = {a: {"shadow_ms": summary([stage(r, "vct/shadow") for r in recs]), "command": cmds[a]}
+                                       for a, recs in runs.items()}
+
+    # two-rooms light leak per storage (library metric, through bounce_bench).
+    bench_bin = os.path.join(os.path.dirname(os.path.dirname(bounce)), "..", "bench", "bounce_bench")
+    bench_bin = os.path.normpath(bench_bin)
+    if os.path.exists(bench_bin):
+        out = subprocess.run([bench_bin, "--benchmark_filter=BM_VctLightLeak", "--benchmark_format=json"], check=True,
+                             capture_output=True, text=True).stdout
+        record["results"]["lightLeak"] = {b["label"]: b["leak"] for b in json.loads(out)["benchmarks"]}
+        record["results"]["lightLeakCommand"] = os.path.relpath(bench_bin, ROOT) + " --benchmark_filter=BM_VctLightLeak --benchmark_format=json"
+        print("leak", record["results"]["lightLeak"], flush=True)
+
     # Quality: indirect vs bounce reference --bounces 1 --indirect-only, 128^2.
     quality = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for scene, frame_count in [("cornell-box", 1), ("cornell-box-dynamic", 31), ("atrium", 1)]:
+        for scene, frame_count in [("cornell-box", 1), ("cornell-box-dynamic", 1), ("cornell-box-dynamic", 16),
+                                   ("cornell-box-dynamic", 31), ("atrium", 1)]:
             ref = os.path.join(tmp, f"{scene}-ref.exr")
             subprocess.run([bounce, "reference", "--scene", scene, "--size", "128x128", "--spp", "512", "--bounces", "1",
                             "--indirect-only", "--frame", str(frame_count - 1), "--out", ref], check=True,

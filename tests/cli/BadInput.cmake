@@ -46,6 +46,12 @@ expect_failure("setting not a number" "expected a finite number" ${png}
 expect_failure("setting without =" "name=value" ${png} render --scene cornell-box --set radiance --size 8x8 --out ${png})
 expect_failure("other technique's setting" "another technique" ${png}
                render --scene cornell-box --technique direct --set ambient.radiance=1 --size 8x8 --out ${png})
+expect_failure("vct resolution not a power of two" "power of two" ${png}
+               render --scene cornell-box --technique vct --set resolution=48 --size 8x8 --out ${png})
+expect_failure("vct storage unknown" "storage" ${png}
+               render --scene cornell-box --technique vct --set storage=octree --size 8x8 --out ${png})
+expect_failure("vct volumes over the memory budget" "memoryBudgetMiB" ${png}
+               render --scene cornell-box --technique vct --set resolution=512 --set memoryBudgetMiB=64 --size 8x8 --out ${png})
 expect_failure("zero size" "--size '0x8'" ${png} render --scene cornell-box --size 0x8 --out ${png})
 expect_failure("malformed size" "--size 'big'" ${png} render --scene cornell-box --size big --out ${png})
 expect_failure("zero frames" "--frames 0" ${png} render --scene cornell-box --frames 0 --size 8x8 --out ${png})

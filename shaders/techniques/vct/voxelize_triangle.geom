@@ -66,13 +66,14 @@ void main() {
             for (int z = zr.x; z <= zr.y; ++z) {
                 if (!voxTestYZZX(t, vec3(x, y, z))) continue;
                 if (!shaded && u_vct.range.w < 0.5) {
-                    // Attributes at the column centre, clamped into the triangle (conservative voxels
-                    // may lie just outside it).
+                    // Attributes at the column centre on the triangle's plane, extrapolated where the
+                    // centre lies outside the triangle (a voxel the overlap test keeps near an edge),
+                    // as the fragment-parallel path does for its dilated triangle (Eq. 4.4). Clamping
+                    // moved those voxels' points onto the edge: 5 % off under a point light.
                     vec2 q = p + 0.5;
                     float l1 = ((q.x - a.x) * (c.y - a.y) - (c.x - a.x) * (q.y - a.y)) / area2;  // weight of b
                     float l2 = ((b.x - a.x) * (q.y - a.y) - (q.x - a.x) * (b.y - a.y)) / area2;  // weight of c
-                    vec3 w = clamp(vec3(1.0 - l1 - l2, l1, l2), 0.0, 1.0);
-                    w /= max(w.x + w.y + w.z, 1e-6);
+                    vec3 w = vec3(1.0 - l1 - l2, l1, l2);
                     vec3 xw = w.x * vg_posWorld[0] + w.y * vg_posWorld[1] + w.z * vg_posWorld[2];
                     vec3 nw = normalize(w.x * vg_normal[0] + w.y * vg_normal[1] + w.z * vg_normal[2] + 1e-12);
                     vec2 uv = w.x * vg_uv[0] + w.y * vg_uv[1] + w.z * vg_uv[2];
