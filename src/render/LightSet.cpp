@@ -84,11 +84,6 @@ void LightSet::bindShadowMaps(size_t i, unsigned unit2D, unsigned unitCube) cons
     (e.gpu.edgeU.w == k2D ? e.depth : m_dummy2D).bind(unit2D);
 }
 
-void LightSet::bindDummyShadowMaps(unsigned unit2D, unsigned unitCube) const {
-    m_dummyCube.bind(unitCube);
-    m_dummy2D.bind(unit2D);
-}
-
 void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
     const SceneGpu& scene = drawer.scene();
     const std::vector<Light>& lights = scene.lights();

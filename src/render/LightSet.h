@@ -28,8 +28,6 @@ public:
     // Binds light i's maps to chosen units: its 2D depth map (or a 1x1 dummy) at unit2D and its cube
     // distance map (or a dummy) at unitCube, so a pass can sample several lights at once.
     void bindShadowMaps(size_t i, unsigned unit2D, unsigned unitCube) const;
-    // Binds the dummies (a 2D compare-mode depth texture of 1, a cube of 1) to both units.
-    void bindDummyShadowMaps(unsigned unit2D, unsigned unitCube) const;
     size_t mapsRendered() const { return m_mapsRendered; }
 
 private:

@@ -33,8 +33,6 @@ layout(std430, binding = BINDING_SSBO_TECH2) coherent buffer ListOut {
     uint out_voxels[];
 };
 
-ivec3 unpackVoxel(uint v) { return ivec3(v & 1023u, (v >> 10) & 1023u, (v >> 20) & 1023u); }
-uint packVoxelCoord(ivec3 p) { return uint(p.x) | (uint(p.y) << 10) | (uint(p.z) << 20); }
 
 ivec3 childOf(ivec3 parent, int i) { return 2 * parent + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1); }
 
@@ -98,7 +96,7 @@ void processVoxel(ivec3 p) {
     ivec3 q = p >> 1;
     if (imageAtomicCompSwap(i_mutexOut, q, 0u, 1u) != 0u) return;
     uint slot = atomicAdd(out_count, 1u);
-    if (slot < out_capacity) out_voxels[slot] = packVoxelCoord(q);
+    if (slot < out_capacity) out_voxels[slot] = packVoxel(q);
     mipIso(q);
 #else
     mipIso(p);

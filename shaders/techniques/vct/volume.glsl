@@ -12,6 +12,10 @@
 
 layout(std140, binding = BINDING_UBO_PASS) uniform VctBlock { VctUniforms u_vct; };
 
+// Active-voxel list entries: 10 bits per coordinate (N <= 512).
+uint packVoxel(ivec3 p) { return uint(p.x) | (uint(p.y) << 10) | (uint(p.z) << 20); }
+ivec3 unpackVoxel(uint v) { return ivec3(v & 1023u, (v >> 10) & 1023u, (v >> 20) & 1023u); }
+
 #ifdef VCT_WRITE
 layout(binding = BINDING_IMG0, r32ui) uniform coherent volatile uimage3D i_iso;
 #if VCT_STORAGE == VCT_STORAGE_SH_F32
@@ -32,8 +36,6 @@ layout(std430, binding = BINDING_SSBO_TECH0) coherent buffer ActiveList0 {
 // Counters: [0] voxel writes, [1] triangles voxelized in the geometry shader (pass 1),
 // [2] triangles deferred to pass 2.
 layout(std430, binding = BINDING_SSBO_TECH1) coherent buffer VctCounters { uint c_counts[8]; };
-
-uint packVoxel(ivec3 p) { return uint(p.x) | (uint(p.y) << 10) | (uint(p.z) << 20); }
 
 uint packRgbCount(vec4 v) {
     uvec4 u = uvec4(clamp(v, vec4(0.0), vec4(255.0)) + vec4(0.5, 0.5, 0.5, 0.0));

@@ -601,10 +601,10 @@ void VctTechnique::mipmap(bool sparse) {
     }
 }
 
-void VctTechnique::trace(FrameContext& ctx, const gl::Texture& indirect) {
-    m_traceFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+void VctTechnique::beginFullScreen(FrameContext& ctx, const gl::Texture& target) {
+    m_traceFbo.attach(GL_COLOR_ATTACHMENT0, target);
     m_traceFbo.setDrawBuffers(1);
-    BOUNCE_CHECK(m_traceFbo.complete(), "vct trace framebuffer");
+    BOUNCE_CHECK(m_traceFbo.complete(), "vct full-screen framebuffer");
     m_traceFbo.bind();
     glViewport(0, 0, ctx.size.x, ctx.size.y);
     glDisable(GL_DEPTH_TEST);
@@ -614,6 +614,10 @@ void VctTechnique::trace(FrameContext& ctx, const gl::Texture& indirect) {
     bindVolumes();
     m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
     gl::Context::current()->bindEmptyVertexArray();
+}
+
+void VctTechnique::trace(FrameContext& ctx, const gl::Texture& indirect) {
+    beginFullScreen(ctx, indirect);
     {
         auto s = ctx.timers.scope("diffuse-ao");
         m_traceDiffuse.use();
@@ -632,18 +636,7 @@ void VctTechnique::trace(FrameContext& ctx, const gl::Texture& indirect) {
 
 void VctTechnique::coneShadowedDirect(FrameContext& ctx) {
     auto s = ctx.timers.scope("shadow");
-    m_traceFbo.attach(GL_COLOR_ATTACHMENT0, ctx.direct);
-    m_traceFbo.setDrawBuffers(1);
-    BOUNCE_CHECK(m_traceFbo.complete(), "vct direct framebuffer");
-    m_traceFbo.bind();
-    glViewport(0, 0, ctx.size.x, ctx.size.y);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_STENCIL_TEST);
-    glDisable(GL_BLEND);
-    ctx.gbuffer.bind();
-    bindVolumes();
-    m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
-    gl::Context::current()->bindEmptyVertexArray();
+    beginFullScreen(ctx, ctx.direct);
     m_emission.use();  // emitted radiance first (unblended), as render/DirectLighting
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_BLEND);

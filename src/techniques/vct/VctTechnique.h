@@ -57,6 +57,8 @@ private:
     void runPass(gl::Program& dense, gl::Program& sparse, bool sparseMode, int level, int listIn, int listOut);
     void trace(FrameContext& ctx, const gl::Texture& indirect);
     void coneShadowedDirect(FrameContext& ctx);
+    // Binds `target`, the G-buffer, the volumes and the parameters for a full-screen pass.
+    void beginFullScreen(FrameContext& ctx, const gl::Texture& target);
     void bindVolumes() const;
 
     // Settings (docs/techniques/vct.md gives the sources of the defaults).
