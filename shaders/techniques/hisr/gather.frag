@@ -17,6 +17,12 @@
 // shaded, summed over the draws).
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
+// The stencil set-up chose which cells of this level rectangle gather; the atomics below are side
+// effects, and without this qualifier GL runs the stencil test after the shader (GL 4.5 §14.9), so
+// every fragment of the rectangle would walk the tree and the stencil would only mask its colour
+// (HisrGpuTest.StencilCullsTheGather). Safe: the shader neither discards nor writes gl_FragDepth, and
+// the gather's stencil op is KEEP.
+layout(early_fragment_tests) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
 layout(binding = BINDING_TEX_INPUT0) uniform sampler2DArray s_lightGeometry;
