@@ -83,10 +83,11 @@ TEST_F(HisrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
 // The gather draws a full rectangle per atlas level and relies on the stencil set-up to shade only the
 // cells chosen at that level. gather.frag writes counters (SSBO atomics), and a fragment shader with
 // side effects gets its depth/stencil tests after it runs unless it declares early_fragment_tests (GL
-// 4.5 §14.9): without the qualifier every fragment of every level rectangle walks the tree, and the
-// stencil only masks the colour write. Mutation check: remove `layout(early_fragment_tests) in;` from
-// shaders/techniques/hisr/gather.frag and both configurations fail (measured on llvmpipe: 5376
-// invocations for 2257 stencilled fragments at 64^2, 3840 for 3 draws x 890 at 32^2 — the whole
+// 4.5, "Early Per-Fragment Tests"): without the qualifier every fragment of every level rectangle walks
+// the tree, and the stencil only masks the colour write. Mutation check: remove
+// `layout(early_fragment_tests) in;` from shaders/techniques/hisr/gather.frag (or point
+// BOUNCE_SHADER_DIR at an edited copy) and both configurations fail (measured on llvmpipe: 5376
+// invocations for 2257 stencilled fragments at 64^2, 3840 for 3 draws x 890 at 32^2: the whole
 // rectangles).
 TEST_F(HisrGpuTest, StencilCullsTheGather) {
     auto scene = loadScene("cornell-box");

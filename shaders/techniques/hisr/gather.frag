@@ -18,10 +18,10 @@
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
 // The stencil set-up chose which cells of this level rectangle gather; the atomics below are side
-// effects, and without this qualifier GL runs the stencil test after the shader (GL 4.5 §14.9), so
-// every fragment of the rectangle would walk the tree and the stencil would only mask its colour
-// (HisrGpuTest.StencilCullsTheGather). Safe: the shader neither discards nor writes gl_FragDepth, and
-// the gather's stencil op is KEEP.
+// effects, and without this qualifier GL runs the stencil test after the shader (GL 4.5, "Early
+// Per-Fragment Tests"), so every fragment of the rectangle would walk the tree and the stencil would
+// only mask its colour (HisrGpuTest.StencilCullsTheGather). Safe: the shader neither discards nor
+// writes gl_FragDepth, and the gather's stencil op is KEEP.
 layout(early_fragment_tests) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
@@ -29,7 +29,11 @@ layout(binding = BINDING_TEX_INPUT0) uniform sampler2DArray s_lightGeometry;
 layout(binding = BINDING_TEX_INPUT1) uniform sampler2DArray s_lightNormal;
 layout(binding = BINDING_TEX_INPUT2) uniform sampler2DArray s_lightNormalMax;
 layout(binding = BINDING_TEX_INPUT3) uniform sampler2DArray s_lightFlux;
-layout(std430, binding = BINDING_SSBO_TECH0) buffer GatherCountBlock { uint u_nodesLow; uint u_nodesHigh; uint u_invocations; };
+layout(std430, binding = BINDING_SSBO_TECH0) buffer GatherCountBlock {
+    uint u_nodesLow;
+    uint u_nodesHigh;
+    uint u_invocations;
+};
 uniform int u_rootLevel;
 uniform int u_maxDepth;
 uniform float u_tau;
