@@ -11,16 +11,29 @@
 // (gpu/ShaderLimits.h) however deep the trees.
 // Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers, u_rootFirst, u_rootEnd.
 // Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), light pyramid geometry/normal/normalMax/flux
-// (BINDING_TEX_INPUT0..3). Outputs: atlas irradiance (alpha 1); u_nodes counts visited nodes.
+// (BINDING_TEX_INPUT0..3). Outputs: atlas irradiance (alpha 1); counters (BINDING_SSBO_TECH0): visited
+// nodes as a 64-bit sum (low word, carries into the high word: at 1024^2, up to 2^20 fragments x 5376
+// nodes with the defaults, more than 2^32) and the invocations of this shader (one per fragment
+// shaded, summed over the draws).
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
+// The stencil set-up chose which cells of this level rectangle gather; the atomics below are side
+// effects, and without this qualifier GL runs the stencil test after the shader (GL 4.5, "Early
+// Per-Fragment Tests"), so every fragment of the rectangle would walk the tree and the stencil would
+// only mask its colour (HisrGpuTest.StencilCullsTheGather). Safe: the shader neither discards nor
+// writes gl_FragDepth, and the gather's stencil op is KEEP.
+layout(early_fragment_tests) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
 layout(binding = BINDING_TEX_INPUT0) uniform sampler2DArray s_lightGeometry;
 layout(binding = BINDING_TEX_INPUT1) uniform sampler2DArray s_lightNormal;
 layout(binding = BINDING_TEX_INPUT2) uniform sampler2DArray s_lightNormalMax;
 layout(binding = BINDING_TEX_INPUT3) uniform sampler2DArray s_lightFlux;
-layout(std430, binding = BINDING_SSBO_TECH0) buffer NodeCountBlock { uint u_nodes; };
+layout(std430, binding = BINDING_SSBO_TECH0) buffer GatherCountBlock {
+    uint u_nodesLow;
+    uint u_nodesHigh;
+    uint u_invocations;
+};
 uniform int u_rootLevel;
 uniform int u_maxDepth;
 uniform float u_tau;
@@ -82,6 +95,9 @@ void main() {
             else cellXY += ivec2(-1, 1);
         }
     }
-    atomicAdd(u_nodes, visited);
+    // Each adder detects its own wrap of the low word (old + visited >= 2^32), so the pair is exact.
+    uint before = atomicAdd(u_nodesLow, visited);
+    if (before > 0xFFFFFFFFu - visited) atomicAdd(u_nodesHigh, 1u);
+    atomicAdd(u_invocations, 1u);
     o_irradiance = vec4(irradiance, 1.0);
 }

@@ -12,6 +12,11 @@
 // the VPL count (BINDING_SSBO_TECH0, TECH1). Output: atlas RGBA32F.
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
+// Only the stencilled cells of the level rectangle may run the loop. This shader has no side effects,
+// so GL already allows the stencil test before it (llvmpipe does it: same frame time with and without
+// the qualifier); the qualifier makes it required, so a counter added here later cannot silently turn
+// the culling off as it did in hisr's gather (see that file). Safe: no discard, no gl_FragDepth, KEEP.
+layout(early_fragment_tests) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };

@@ -5,8 +5,8 @@
 // per node, techniques/nichols/MinMaxPyramid), "min-max-mipmap" (eye space), "stencil-setup",
 // "gather" (per fragment: traversal of the tree from the 16^2 roots with Eq. 4.8, at most maxDepth
 // levels down, disk-to-point form factor per accepted node), "upsample" (§3.2.5, then x albedo/pi).
-// Counters: fragments per level, tree nodes visited per gathered fragment. The eye-space passes are
-// techniques/nichols/StencilledGather, shared with isr.
+// Counters: fragments per level, tree nodes visited per gathered fragment, gather invocations. The
+// eye-space passes are techniques/nichols/StencilledGather, shared with isr.
 //
 // Deviations (docs/techniques/hisr.md): the tree is the RSM's mip chain itself (a 2D-array mipmap),
 // not the Haar-like cache-coherent re-layout of §4.2.4; Eq. 4.8 uses I = 1 (normalised light) and the
@@ -19,6 +19,7 @@
 #include "gpu/ShaderLimits.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 
 namespace bounce {
@@ -42,7 +43,7 @@ Expected<void> HisrTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
     BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                              {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}}}));
-    m_nodes = gl::Buffer::create("hisr.nodesVisited", sizeof(uint32_t));
+    m_gatherCounts = gl::Buffer::create("hisr.gatherCounts", 3 * sizeof(uint32_t));
     return {};
 }
 
@@ -67,8 +68,8 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_light->normal().bind(BINDING_TEX_INPUT1);
         m_light->normalMax().bind(BINDING_TEX_INPUT2);
         m_light->flux().bind(BINDING_TEX_INPUT3);
-        m_nodes.clearZero();
-        m_nodes.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+        m_gatherCounts.clearZero();
+        m_gatherCounts.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_gather.set("u_rootLevel", m_light->levels() - 1);
         m_gather.set("u_maxDepth", m_maxDepth);
         m_gather.set("u_tau", m_tau);
@@ -91,10 +92,15 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
     }
     m_eye->finish(ctx, indirect, fragments);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    uint32_t nodes = 0;
-    m_nodes.download(0, sizeof(nodes), &nodes);
+    // gather.frag's counters: visited nodes (low, high word) and its invocations over all draws.
+    uint32_t counts[3] = {0, 0, 0};
+    m_gatherCounts.download(0, sizeof(counts), counts);
+    const double nodes = static_cast<double>((uint64_t{counts[1]} << 32) | counts[0]);
     const double total = std::accumulate(fragments.begin(), fragments.end(), 0.0);
     ctx.counters["nodesPerFragment"] = total > 0.0 ? nodes / total : 0.0;
+    // = gatherFragments x gatherDraws when the stencil culls the gather (early fragment tests), more
+    // when fragments the stencil rejects are shaded too (HisrGpuTest.StencilCullsTheGather).
+    ctx.counters["gatherInvocations"] = static_cast<double>(counts[2]);
 }
 
 }  // namespace bounce

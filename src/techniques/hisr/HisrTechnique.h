@@ -29,7 +29,7 @@ private:
     std::optional<nichols::MinMaxPyramid> m_light;
     std::optional<nichols::StencilledGather> m_eye;
     gl::Program m_gather;
-    gl::Buffer m_nodes;
+    gl::Buffer m_gatherCounts;
 };
 
 }  // namespace bounce
