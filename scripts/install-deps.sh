@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libglfw3-dev libglm-dev libassimp-dev
-  libembree-dev libtbb-dev libcgal-dev
+  libembree-dev libtbb-dev libcgal-dev libnanoflann-dev
   libstb-dev libopenexr-dev libimgui-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev

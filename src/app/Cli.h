@@ -17,6 +17,7 @@ void registerRenderCommand(CLI::App& root, CommandAction& action);
 void registerViewCommand(CLI::App& root, CommandAction& action);
 void registerReferenceCommand(CLI::App& root, CommandAction& action);
 void registerCompareCommand(CLI::App& root, CommandAction& action);
+void registerPhotonMapCommand(CLI::App& root, CommandAction& action);
 
 int runCli(int argc, char** argv);
 

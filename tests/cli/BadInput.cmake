@@ -83,3 +83,9 @@ endif()
 file(WRITE ${WORK}/small.exr "")
 execute_process(COMMAND ${BOUNCE} render --scene cornell-box --size 8x8 --out ${WORK}/small.exr RESULT_VARIABLE rc)
 expect_failure("compare different sizes" "size" "" compare ${png} ${WORK}/small.exr)
+
+# bounce photon-map: flags checked before any work, one line, no output left.
+expect_failure("photon-map k 1" "--k" ${WORK}/pm.exr photon-map --scene cornell-box --size 8x8 --k 1 --out ${WORK}/pm.exr)
+expect_failure("photon-map no photons" "--photons" ${WORK}/pm.exr photon-map --scene cornell-box --photons 0 --out ${WORK}/pm.exr)
+expect_failure("photon-map bad stats" "JSON" ${WORK}/pm.exr photon-map --scene cornell-box --size 8x8 --out ${WORK}/pm.exr --stats ${WORK}/pm.txt)
+expect_failure("photon-map missing folder" "does not exist" "" photon-map --scene cornell-box --out ${WORK}/none/pm.exr)
