@@ -7,6 +7,7 @@
 #include "techniques/isr/IsrTechnique.h"
 #include "techniques/multires_splat/MultiresSplatTechnique.h"
 #include "techniques/rsm/RsmTechnique.h"
+#include "techniques/photon_splat/PhotonSplatTechnique.h"
 #include "techniques/rsm_splat/RsmSplatTechnique.h"
 #include "techniques/vct/VctTechnique.h"
 
@@ -26,6 +27,8 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         {"multires-splat", "multiresolution splatting: subsplat refinement by geometry shader + transform feedback (Nichols 2010 ch. 3)", "Nichols 2010 thesis ch. 3; Nichols & Wyman, I3D 2009", [] { return std::make_unique<MultiresSplatTechnique>(); }},
         {"vct", "voxel cone tracing: hybrid voxelization, isotropic / anisotropic / spherical-harmonics radiance, 60-degree cones (Rauwendaal 2013)",
          "Rauwendaal 2013 PhD thesis; Rauwendaal & Bailey, JCGT 2013", [] { return std::make_unique<VctTechnique>(); }},
+        {"photon-splat", "photon splatting: CPU-traced photons as orthographic bundles with their own depth maps, splatted and normalised (seed 004)",
+         "photon splatting with orthographic bundles (seed 004 thesis)", [] { return std::make_unique<PhotonSplatTechnique>(); }},
         {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;

@@ -1,0 +1,225 @@
+#include "techniques/photon_splat/PhotonInjection.h"
+
+#include "reference/Rng.h"
+#include "reference/Sampling.h"
+#include "reference/TextureLookup.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace bounce::photonsplat {
+
+namespace {
+
+constexpr float kPi = glm::pi<float>();
+
+float luminanceOf(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+glm::vec3 uniformSphere(float u1, float u2) {
+    const float z = 1.0f - 2.0f * u1;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.0f * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// Flux a light sends into the scene (W per channel). Directional lights: the irradiance through the
+// disc that covers the scene's bounding sphere.
+glm::vec3 emittedFlux(const Light& l, float sceneRadius) {
+    if (l.type == LightType::Directional) return l.irradiance * (kPi * sceneRadius * sceneRadius);
+    return l.flux();
+}
+
+struct Emission {
+    glm::vec3 origin, direction, power;
+};
+
+// One emitted photon of light l with numbers u[0..3]; `share` is its share (1/n) of the light's flux.
+Emission emit(const Light& l, const float u[4], glm::vec3 centre, float radius, glm::vec3 share, uint32_t n) {
+    Emission e{l.position, glm::vec3(0.0f, -1.0f, 0.0f), share};
+    switch (l.type) {
+        case LightType::Point: e.direction = uniformSphere(u[0], u[1]); break;
+        case LightType::Spot: {
+            // Uniform in the cone's solid angle, power weighted by cos^n (the sum estimates Light::flux()).
+            const float cutoff = std::min(l.cutoffAngle, kPi / 2.0f);
+            const float cosC = std::cos(cutoff);
+            const float cosA = 1.0f - u[0] * (1.0f - cosC);
+            const float sinA = std::sqrt(std::max(0.0f, 1.0f - cosA * cosA));
+            const float phi = 2.0f * kPi * u[1];
+            const Frame f(glm::normalize(l.direction));
+            e.direction = f.toWorld({sinA * std::cos(phi), sinA * std::sin(phi), cosA});
+            // Uniform over the cone's solid angle: each photon carries I(alpha) * solid / n, whose sum
+            // estimates Light::flux() (the cos^n integral).
+            const float solid = 2.0f * kPi * (1.0f - cosC);
+            e.power = l.intensity * std::pow(cosA, l.falloffExponent) * solid / static_cast<float>(n);
+            break;
+        }
+        case LightType::Directional: {
+            const glm::vec3 d = glm::normalize(l.direction);
+            const Frame f(d);
+            const float r = radius * std::sqrt(u[0]), phi = 2.0f * kPi * u[1];
+            e.origin = centre - d * (2.0f * radius) + f.toWorld({r * std::cos(phi), r * std::sin(phi), 0.0f});
+            e.direction = d;
+            break;
+        }
+        case LightType::Area: {
+            e.origin = l.position + (u[0] - 0.5f) * l.edgeU + (u[1] - 0.5f) * l.edgeV;
+            const Frame f(l.areaNormal());
+            e.direction = f.toWorld(cosineHemisphere(u[2], u[3]));
+            break;
+        }
+    }
+    return e;
+}
+
+glm::vec3 albedoAt(const Scene& scene, const RayHit& hit) {
+    const Material& m = scene.materials[hit.materialIndex];
+    glm::vec3 a = m.baseColor;
+    if (m.baseColorTexture >= 0) a *= lookupBilinearRepeat(scene.textures[static_cast<size_t>(m.baseColorTexture)].image, hit.uv);
+    return a * (1.0f - m.metallic);
+}
+
+}  // namespace
+
+std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings) {
+    std::vector<Photon> out;
+    glm::vec3 lo, hi;
+    scene.bounds(time, lo, hi);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+    // Lights at time t, photons split over them by flux (luminance).
+    std::vector<Light> lights;
+    for (const Light& l : scene.lights) lights.push_back(l.at(time));
+    std::vector<float> weight;
+    for (const Light& l : lights) weight.push_back(std::max(luminanceOf(emittedFlux(l, radius)), 0.0f));
+    const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
+    if (!(total > 0.0f) || settings.photons == 0) return out;
+    for (size_t li = 0; li < lights.size(); ++li) {
+        const Light& l = lights[li];
+        const uint32_t n = static_cast<uint32_t>(std::lround(settings.photons * weight[li] / total));
+        if (n == 0) continue;
+        const glm::vec3 share = emittedFlux(l, radius) / static_cast<float>(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            Rng rng(settings.seed, li, i);
+            const float u[4] = {rng.next(), rng.next(), rng.next(), rng.next()};
+            Emission e = emit(l, u, centre, radius, share, n);
+            glm::vec3 origin = e.origin, dir = e.direction, power = e.power;
+            for (uint32_t b = 0; b < settings.bounces; ++b) {
+                const std::optional<RayHit> hit = caster.closestHit(origin, dir);
+                if (!hit) break;
+                const Material& m = scene.materials[hit->materialIndex];
+                // Light reaches a one-sided surface's back only to be absorbed (docs/scene.md).
+                if (!hit->frontFacing && !m.twoSided) break;
+                const glm::vec3 shading = hit->frontFacing ? hit->shadingNormal : -hit->shadingNormal;
+                const glm::vec3 ng = hit->frontFacing ? hit->geometricNormal : -hit->geometricNormal;
+                power *= albedoAt(scene, *hit);
+                if (maxComponent(power) <= 0.0f) break;
+                const Frame f(shading);
+                glm::vec3 next = f.toWorld(cosineHemisphere(rng.next(), rng.next()));
+                if (glm::dot(next, ng) <= 0.0f) next = glm::reflect(next, ng);  // shading normal past the face
+                out.push_back(Photon{hit->position, power, next, ng});
+                origin = offsetRayOrigin(hit->position, ng);
+                dir = next;
+            }
+        }
+    }
+    return out;
+}
+
+std::vector<Photon> stratify(const std::vector<Photon>& photons, glm::vec3 lo, glm::vec3 hi, int gridSize, int threshold,
+                             uint64_t seed, StratifyStats* stats) {
+    const int g = std::max(gridSize, 2) & ~1;  // whole 2x2x2 blocks
+    const glm::vec3 extent = glm::max(hi - lo, glm::vec3(1e-6f));
+    std::vector<Photon> out;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> cells;  // dense in the thesis, sparse storage here
+    auto cellOf = [&](glm::vec3 p, glm::ivec3& c) {
+        c = glm::ivec3(glm::floor((p - lo) / extent * static_cast<float>(g)));
+        return glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThan(c, glm::ivec3(g)));
+    };
+    for (uint32_t i = 0; i < photons.size(); ++i) {
+        glm::ivec3 c;
+        if (!cellOf(photons[i].position, c)) {
+            out.push_back(photons[i]);  // outside the grid: kept (the thesis ignores or cascades them)
+            continue;
+        }
+        cells[static_cast<uint64_t>(c.x) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(c.y) + static_cast<uint64_t>(g) * c.z)].push_back(i);
+    }
+    size_t merged = 0;
+    auto combine = [&](const std::vector<uint32_t>& members, uint64_t key) {
+        Rng rng(seed, key, members.size());
+        const uint32_t pick = members[std::min<size_t>(members.size() - 1, static_cast<size_t>(rng.next() * members.size()))];
+        Photon p = photons[pick];
+        p.power = glm::vec3(0.0f);
+        for (uint32_t m : members) p.power += photons[m].power;
+        out.push_back(p);
+    };
+    for (int bz = 0; bz < g; bz += 2)
+        for (int by = 0; by < g; by += 2)
+            for (int bx = 0; bx < g; bx += 2) {
+                const std::vector<uint32_t>* block[8];
+                bool sparse = false, any = false;
+                for (int k = 0; k < 8; ++k) {
+                    const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + ((k >> 2) & 1);
+                    auto it = cells.find(static_cast<uint64_t>(x) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(y) + static_cast<uint64_t>(g) * z));
+                    block[k] = it == cells.end() ? nullptr : &it->second;
+                    if (block[k]) {
+                        any = true;
+                        if (static_cast<int>(block[k]->size()) < threshold) sparse = true;
+                    }
+                }
+                if (!any) continue;
+                const uint64_t key = static_cast<uint64_t>(bx) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(by) + static_cast<uint64_t>(g) * bz);
+                if (sparse) {
+                    std::vector<uint32_t> members;
+                    for (auto* c : block)
+                        if (c) members.insert(members.end(), c->begin(), c->end());
+                    combine(members, key);
+                    ++merged;
+                } else {
+                    for (int k = 0; k < 8; ++k)
+                        if (block[k]) combine(*block[k], key * 8 + static_cast<uint64_t>(k));
+                }
+            }
+    if (stats) {
+        stats->inputPhotons = photons.size();
+        stats->outputPhotons = out.size();
+        stats->mergedBlocks = merged;
+        stats->gridBytes = static_cast<size_t>(g) * g * g * kThesisCellBytes;
+    }
+    return out;
+}
+
+void bundleAxes(glm::vec3 w, glm::vec3& right, glm::vec3& up) {
+    const glm::vec3 helper = std::abs(w.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    right = glm::normalize(glm::cross(helper, w));
+    up = glm::cross(w, right);
+}
+
+std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings) {
+    std::vector<CastRay> rays(photons.size());
+    for (size_t i = 0; i < photons.size(); ++i) {
+        rays[i].origin = offsetRayOrigin(photons[i].position, photons[i].normal);
+        rays[i].direction = photons[i].direction;
+        rays[i].tMax = settings.maxDistance;
+    }
+    std::vector<std::optional<RayHit>> hits(photons.size());
+    caster.closestHits(rays, hits);
+    std::vector<Bundle> out;
+    for (size_t i = 0; i < photons.size(); ++i) {
+        if (!hits[i]) continue;
+        Bundle b;
+        b.hitDistance = hits[i]->t;
+        const float back = std::min(settings.stepBack, 0.5f * b.hitDistance);
+        b.direction = photons[i].direction;
+        b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
+        bundleAxes(b.direction, b.right, b.up);
+        b.power = photons[i].power;
+        out.push_back(b);
+    }
+    return out;
+}
+
+}  // namespace bounce::photonsplat

@@ -1,0 +1,280 @@
+// `photon-splat` — photon splatting with orthographic bundles (seed 004: a thesis whose title page
+// is lost; "photon splatting", ch. 3-4) on the GPU pipeline the document suggests.
+//
+// Passes per frame:
+//  1. "inject" (CPU, §3.2 method A): photons shot from the lights through the Embree ray-casting
+//     service; at the first diffuse hit each stores position, power (its share of the light's flux
+//     times the albedo) and a cosine-distributed direction about the normal; `bounces` > 1 stores
+//     the next hits too (PhotonInjection.cpp).
+//  2. "stratify" (CPU, optional, §3.2.1/§4.2): a dense grid over the scene, one level of 2x2x2 block
+//     merging under a photon-count threshold, one random representative per cell or block carrying
+//     the summed power.
+//  3. "bundles" (CPU, §3.3/§4.3, Fig. 4): per photon a ray along its direction to the first hit at
+//     distance d, a step back by b: the orthographic frustum starts at C = P + (d - b) w, looks along
+//     w, is 2h x 2h wide and D deep.
+//  4. "depth-maps": each bundle's r x r depth map of the scene (back faces included: no culling),
+//     layers of a texture array, up to the array limit per batch.
+//  5. "splat": per bundle one screen rectangle around its box; each G-buffer pixel inside it gets the
+//     Lambert splat S = max(0, -w.N) C A with a box, tent or Gaussian weight and the tolerant depth
+//     test, accumulated with the weight in alpha by additive blending (splat.frag).
+//  6. "resolve": normalisation sum(w S) / sum(w) with the ambient fallback and the exposure (§3.4,
+//     §4.4), or bounce's calibrated flux estimate; debug views.
+//  7. "blur" (optional, §3.5): separable Gaussian, 3..9 pixels.
+// Combine (§3.6) is the pipeline's full = direct + indirect.
+//
+// Deviations (docs/techniques/photon-splat.md): CPU injection per frame with a fixed seed (the
+// document shoots from the CPU too; the RSM variant it suggests is not implemented); C = photon
+// power / (pi (2h)^2), the beam's radiance, since the document leaves the colour's scale to the
+// exposure; the `flux` estimate (not in the document) makes the splat an estimator of one-bounce
+// indirect light; the stratification keeps the grid sparse in memory but reports the dense grid's
+// 40 B/cell; the screen rectangle of the box replaces the document's full-screen pass per splat.
+#include "techniques/photon_splat/PhotonSplatTechnique.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+#include "gpu/Context.h"
+#include "techniques/photon_splat/splat_shared.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <chrono>
+
+namespace bounce {
+
+namespace {
+
+// Defaults tied to the scene's size, for settings given as 0 (the document leaves them to the artist).
+constexpr float kAutoMapSizeFraction = 0.1f;   // bundle width 2h = a tenth of the scene diagonal
+constexpr float kAutoStepBackFraction = 0.25f;  // b = h / 4: close to the hit, as Fig. 4 draws it
+constexpr float kAutoDepthFactor = 2.0f;        // D = b + 2 (2h): receivers up to twice the width past the hit
+constexpr float kAutoToleranceTexels = 2.0f;    // depth tolerance: two map texels of slope
+
+template <size_t N>
+int indexOf(const std::array<std::string_view, N>& list, std::string_view s) {
+    for (size_t i = 0; i < N; ++i)
+        if (list[i] == s) return static_cast<int>(i);
+    return 0;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("photons", m_photonCount, "photons shot from the lights per frame (document: 2,500-50,000)", 1, 1 << 20);
+    v.field("bounces", m_bounces, "diffuse hits at which photons are stored (1: single bounce, as implemented in the document)", 1, 8);
+    v.field("seed", m_seed, "random seed of the photon paths", 0, 1 << 30);
+    v.field("reseed", m_reseed, "new photon paths every frame (seed + frame): converges over frames, flickers; off = the same paths every frame");
+    v.field("stratify", m_stratify, "3D stratification of the photons (document 3.2.1 / 4.2)");
+    v.field("gridSize", m_gridSize, "stratification cells per side (even; document Fig. 9: 16)", 2, 256);
+    v.field("threshold", m_threshold, "a 2x2x2 block with a non-empty cell under this many photons is merged (document Fig. 3: 2)", 1, 1 << 20);
+    v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a tenth of the scene diagonal", 0.0f, 1.0e6f);
+    v.field("mapDepth", m_mapDepth, "bundle depth D, metres; 0 = b + 2 mapSize", 0.0f, 1.0e6f);
+    v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres; 0 = mapSize / 8", 0.0f, 1.0e6f);
+    v.field("mapResolution", m_mapResolution, "texels per side of each bundle's depth map (document: 4 and 32 tested)", 4, 32);
+    v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver up to this far behind the stored depth is lit, metres; 0 = two texels", 0.0f, 1.0e6f);
+    v.field("filter", m_filter, "splat weight over the cross-section: gaussian (sigma = h/2), tent, box (document Fig. 6)", kFilters);
+    v.field("estimate", m_estimate, "normalized: sum(w S)/sum(w) times exposure (the document); flux: rho/pi sum Phi w cos V with a unit-integral kernel (bounce's calibrated estimator of one-bounce light)", kEstimates);
+    v.field("exposure", m_exposure, "factor on the normalized indirect light (document 4.4)", 0.0f, 1.0e6f);
+    v.field("ambient", m_ambient, "radiance (times albedo) of pixels no bundle reached, W/(m^2 sr) (document 3.4)", 0.0f, 1.0e6f);
+    v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5)", 0, 9);
+    v.field("debugView", m_debugView, "overlap: bundles per pixel (blue 0 to red 16); accumulation: before normalisation; grid: stratification cell of each pixel", kDebugViews);
+}
+
+Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
+    if (m_blur != 0 && (m_blur < 3 || m_blur % 2 == 0))
+        return makeError("setting blur={}: the blur kernel is 0 (off) or 3, 5, 7 or 9 pixels", m_blur);
+    if (m_gridSize % 2 != 0) return makeError("setting gridSize={} must be even (the grid is walked in 2x2x2 blocks)", m_gridSize);
+    ctx.scene.bounds(0.0f, m_lo, m_hi);
+    m_diagonal = std::max(glm::length(m_hi - m_lo), 1e-3f);
+    const float size = m_mapSize > 0.0f ? m_mapSize : kAutoMapSizeFraction * m_diagonal;
+    m_half = 0.5f * size;
+    m_back = m_stepBack > 0.0f ? m_stepBack : kAutoStepBackFraction * m_half;
+    m_depth = m_mapDepth > 0.0f ? m_mapDepth : m_back + kAutoDepthFactor * size;
+    const gl::GpuInfo& info = gl::Context::current()->info();
+    m_maxLayers = std::max(1, std::min(info.maxArrayLayers, 2048));
+    const int r = m_mapResolution;
+    BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "render/scene.vert"},
+                                                                         {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
+    BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
+                                                                   {GL_FRAGMENT_SHADER, "techniques/photon_splat/splat.frag"}}}));
+    BOUNCE_TRY(m_resolve, gl::Program::build({"photon-splat.resolve", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                                       {GL_FRAGMENT_SHADER, "techniques/photon_splat/resolve.frag"}}}));
+    BOUNCE_TRY(m_blurProgram, gl::Program::build({"photon-splat.blur", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                                        {GL_FRAGMENT_SHADER, "techniques/photon_splat/blur.frag"}}}));
+    gl::TextureDesc maps;
+    maps.target = GL_TEXTURE_2D_ARRAY;
+    maps.format = GL_DEPTH_COMPONENT32F;
+    maps.width = maps.height = r;
+    maps.depth = std::min(m_maxLayers, std::max(1, m_photonCount * m_bounces));
+    maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
+    m_maps = gl::Texture::create("photon-splat.depthMaps", maps);
+    m_accum = gl::Texture::create2D("photon-splat.accumulation", ctx.size.x, ctx.size.y, GL_RGBA32F);
+    m_stats = gl::Texture::create2D("photon-splat.overlap", ctx.size.x, ctx.size.y, GL_RGBA32F);
+    m_blurTemp = gl::Texture::create2D("photon-splat.blur", ctx.size.x, ctx.size.y, GL_RGBA32F);
+    m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
+    m_accumFbo = gl::Framebuffer::create("photon-splat.accumFbo");
+    m_accumFbo.attach(GL_COLOR_ATTACHMENT0, m_accum);
+    m_accumFbo.attach(GL_COLOR_ATTACHMENT1, m_stats);
+    m_accumFbo.setDrawBuffers(2);
+    BOUNCE_CHECK(m_accumFbo.complete(), "photon-splat accumulation framebuffer");
+    m_outFbo = gl::Framebuffer::create("photon-splat.outFbo");
+    m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(std::max(1, m_photonCount * m_bounces)) * sizeof(gpu::BundleGpu));
+    m_caster.reset();
+    m_casterTime = -1.0f;
+    return {};
+}
+
+void PhotonSplatTechnique::updateGeometry(FrameContext& ctx) {
+    // The ray-casting scene at this frame's time; static scenes build it once.
+    if (!m_caster || (ctx.sceneGpu.hasDynamicObjects() && m_casterTime != ctx.time)) {
+        auto caster = RayCaster::create(ctx.scene, ctx.time, GeometryFilter::All);
+        BOUNCE_CHECK(caster.ok(), "photon-splat: ray-casting scene");
+        m_caster.emplace(std::move(*caster));
+        m_casterTime = ctx.time;
+    }
+}
+
+void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    updateGeometry(ctx);
+    {
+        auto s = ctx.timers.scope("inject");  // CPU work: the timer shows the wall time it blocks
+        const auto t0 = std::chrono::steady_clock::now();
+        photonsplat::InjectionSettings inj;
+        inj.photons = static_cast<uint32_t>(m_photonCount);
+        inj.bounces = static_cast<uint32_t>(m_bounces);
+        inj.seed = static_cast<uint64_t>(m_seed) + (m_reseed ? ctx.frame : 0u);
+        m_photonList = photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
+        ctx.counters["injectMs"] = msSince(t0);
+        ctx.counters["photonsStored"] = static_cast<double>(m_photonList.size());
+        ctx.counters["photonBytes"] = static_cast<double>(m_photonList.size() * photonsplat::kThesisPhotonBytes);
+        if (m_stratify) {
+            const auto t1 = std::chrono::steady_clock::now();
+            photonsplat::StratifyStats st;
+            m_photonList = photonsplat::stratify(m_photonList, m_lo, m_hi, m_gridSize, m_threshold, inj.seed, &st);
+            ctx.counters["stratifyMs"] = msSince(t1);
+            ctx.counters["gridBytes"] = static_cast<double>(st.gridBytes);
+            ctx.counters["mergedBlocks"] = static_cast<double>(st.mergedBlocks);
+            ctx.counters["photonsStratified"] = static_cast<double>(st.outputPhotons);
+        }
+        const auto t2 = std::chrono::steady_clock::now();
+        photonsplat::BundleSettings bs;
+        bs.stepBack = m_back;
+        m_bundles = photonsplat::placeBundles(m_photonList, *m_caster, bs);
+        ctx.counters["bundleMs"] = msSince(t2);
+        ctx.counters["bundles"] = static_cast<double>(m_bundles.size());
+    }
+    const int count = static_cast<int>(std::min<size_t>(m_bundles.size(), m_bundleBuffer.size() / sizeof(gpu::BundleGpu)));
+    std::vector<gpu::BundleGpu> gpuBundles(static_cast<size_t>(count));
+    for (int i = 0; i < count; ++i) {
+        const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
+        gpuBundles[static_cast<size_t>(i)] = gpu::BundleGpu{glm::vec4(b.origin, m_half), glm::vec4(b.direction, m_depth),
+                                                            glm::vec4(b.right, std::min(m_back, 0.5f * b.hitDistance)), glm::vec4(b.up, 0.0f),
+                                                            glm::vec4(b.power, 0.0f)};
+    }
+    if (count > 0) m_bundleBuffer.upload(0, gpuBundles.size() * sizeof(gpu::BundleGpu), gpuBundles.data());
+
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 1, zero);
+    const float tolerance = m_depthTolerance > 0.0f ? m_depthTolerance : kAutoToleranceTexels * 2.0f * m_half / static_cast<float>(m_mapResolution);
+    const int layers = m_maps.desc().depth;
+    int batches = 0;
+    for (int first = 0; first < count; first += layers, ++batches) {
+        const int n = std::min(layers, count - first);
+        {
+            auto s = ctx.timers.scope("depth-maps");
+            const float one = 1.0f;
+            glClearTexImage(m_maps.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+            m_depthProgram.use();
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LESS);
+            glDisable(GL_CULL_FACE);  // back faces occlude too: the frustum may start inside geometry (4.3)
+            glDisable(GL_BLEND);
+            glDisable(GL_STENCIL_TEST);
+            for (int i = 0; i < n; ++i) {
+                const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(first + i)];
+                m_mapFbo.attachLayer(GL_DEPTH_ATTACHMENT, m_maps, i);
+                m_mapFbo.setDrawBuffers(0);
+                m_mapFbo.bind();
+                render::View view;
+                view.viewFromWorld = glm::lookAt(b.origin, b.origin + b.direction, b.up);
+                view.clipFromView = glm::ortho(-m_half, m_half, -m_half, m_half, 0.0f, m_depth);
+                view.eye = b.origin;
+                view.nearPlane = 0.0f;
+                view.farPlane = m_depth;
+                view.viewport = {m_mapResolution, m_mapResolution};
+                ctx.drawer.draw(view);
+            }
+            glDisable(GL_DEPTH_TEST);
+        }
+        {
+            auto s = ctx.timers.scope("splat");
+            m_accumFbo.bind();
+            glViewport(0, 0, ctx.size.x, ctx.size.y);
+            glEnable(GL_BLEND);
+            glBlendEquation(GL_FUNC_ADD);
+            glBlendFunc(GL_ONE, GL_ONE);
+            ctx.gbuffer.bind();
+            m_maps.bind(BINDING_TEX_TECH0);
+            m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_splat.set("u_first", first);
+            m_splat.set("u_filter", indexOf(kFilters, m_filter) == 0 ? SPLAT_FILTER_GAUSSIAN
+                                    : indexOf(kFilters, m_filter) == 1 ? SPLAT_FILTER_TENT : SPLAT_FILTER_BOX);
+            m_splat.set("u_estimate", m_estimate == "flux" ? SPLAT_ESTIMATE_FLUX : SPLAT_ESTIMATE_NORMALIZED);
+            m_splat.set("u_tolerance", tolerance);
+            m_splat.use();
+            gl::Context::current()->bindEmptyVertexArray();
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 6, n);
+            glDisable(GL_BLEND);
+        }
+    }
+    ctx.counters["depthMapBatches"] = static_cast<double>(batches);
+    ctx.counters["depthMapTexels"] = static_cast<double>(count) * m_mapResolution * m_mapResolution;
+    ctx.counters["bundleHalfSize"] = m_half;
+    {
+        auto s = ctx.timers.scope("resolve");
+        const gl::Texture& target = m_blur > 0 && m_debugView == "none" ? m_blurTemp : indirect;
+        m_outFbo.attach(GL_COLOR_ATTACHMENT0, target);
+        m_outFbo.setDrawBuffers(1);
+        BOUNCE_CHECK(m_outFbo.complete(), "photon-splat output framebuffer");
+        m_outFbo.bind();
+        glViewport(0, 0, ctx.size.x, ctx.size.y);
+        ctx.gbuffer.bind();
+        m_accum.bind(BINDING_TEX_INPUT0);
+        m_stats.bind(BINDING_TEX_INPUT1);
+        m_resolve.set("u_estimate", m_estimate == "flux" ? SPLAT_ESTIMATE_FLUX : SPLAT_ESTIMATE_NORMALIZED);
+        m_resolve.set("u_exposure", m_exposure);
+        m_resolve.set("u_ambient", glm::vec3(m_ambient));
+        m_resolve.set("u_view", indexOf(kDebugViews, m_debugView));
+        m_resolve.set("u_heatMax", 16.0f);
+        m_resolve.set("u_gridLo", m_lo);
+        m_resolve.set("u_gridHi", m_hi);
+        m_resolve.set("u_gridSize", m_gridSize);
+        m_resolve.use();
+        gl::Context::current()->bindEmptyVertexArray();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    if (m_blur > 0 && m_debugView == "none") {
+        auto s = ctx.timers.scope("blur");
+        // Horizontal into m_accum (free now), vertical into the output.
+        m_blurProgram.set("u_kernel", m_blur);
+        m_outFbo.attach(GL_COLOR_ATTACHMENT0, m_accum);
+        m_outFbo.bind();
+        m_blurTemp.bind(BINDING_TEX_INPUT0);
+        m_blurProgram.set("u_direction", glm::ivec2(1, 0));
+        m_blurProgram.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        m_outFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+        m_outFbo.bind();
+        m_accum.bind(BINDING_TEX_INPUT0);
+        m_blurProgram.set("u_direction", glm::ivec2(0, 1));
+        m_blurProgram.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+}
+
+}  // namespace bounce

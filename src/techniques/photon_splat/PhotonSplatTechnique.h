@@ -1,0 +1,66 @@
+#pragma once
+// `photon-splat`: photon splatting with orthographic bundles (seed 004). See PhotonSplatTechnique.cpp
+// for the passes and docs/techniques/photon-splat.md for settings and deviations.
+#include "techniques/Technique.h"
+#include "techniques/photon_splat/PhotonInjection.h"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace bounce {
+
+class PhotonSplatTechnique final : public Technique {
+public:
+    std::string_view name() const override { return "photon-splat"; }
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+
+    static constexpr std::array<std::string_view, 3> kFilters{"gaussian", "tent", "box"};
+    static constexpr std::array<std::string_view, 2> kEstimates{"normalized", "flux"};
+    static constexpr std::array<std::string_view, 4> kDebugViews{"none", "overlap", "accumulation", "grid"};
+
+    // For tests: the photons and bundles of the last frame.
+    const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
+    const std::vector<photonsplat::Bundle>& bundles() const { return m_bundles; }
+    float halfSize() const { return m_half; }
+
+private:
+    void updateGeometry(FrameContext& ctx);
+
+    // Settings (docs/techniques/photon-splat.md gives the sources of the defaults).
+    int m_photonCount = 1024;
+    int m_bounces = 1;
+    int m_seed = 0;
+    bool m_reseed = false;
+    bool m_stratify = false;
+    int m_gridSize = 16;
+    int m_threshold = 2;
+    float m_mapSize = 0.0f;
+    float m_mapDepth = 0.0f;
+    float m_stepBack = 0.0f;
+    int m_mapResolution = 8;
+    float m_depthTolerance = 0.0f;
+    std::string m_filter{"gaussian"};
+    std::string m_estimate{"normalized"};
+    float m_exposure = 1.0f;
+    float m_ambient = 0.0f;
+    int m_blur = 0;
+    std::string m_debugView{"none"};
+
+    float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f, m_diagonal = 1.0f;
+    glm::vec3 m_lo{0.0f}, m_hi{0.0f};
+    int m_maxLayers = 256;
+    std::optional<RayCaster> m_caster;
+    float m_casterTime = -1.0f;
+    std::vector<photonsplat::Photon> m_photonList;
+    std::vector<photonsplat::Bundle> m_bundles;
+    gl::Buffer m_bundleBuffer;
+    gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
+    gl::Framebuffer m_mapFbo, m_accumFbo, m_outFbo;
+    gl::Program m_depthProgram, m_splat, m_resolve, m_blurProgram;
+};
+
+}  // namespace bounce
