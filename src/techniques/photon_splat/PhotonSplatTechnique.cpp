@@ -147,7 +147,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         inj.photons = static_cast<uint32_t>(m_photonCount);
         inj.bounces = static_cast<uint32_t>(m_bounces);
         inj.seed = static_cast<uint64_t>(m_seed) + (m_reseed ? ctx.frame : 0u);
-        m_photonList = photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
+        m_photonList = m_fixedPhotons ? *m_fixedPhotons : photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
         ctx.counters["injectMs"] = msSince(t0);
         ctx.counters["photonsStored"] = static_cast<double>(m_photonList.size());
         ctx.counters["photonBytes"] = static_cast<double>(m_photonList.size() * photonsplat::kThesisPhotonBytes);

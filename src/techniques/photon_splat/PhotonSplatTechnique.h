@@ -26,6 +26,8 @@ public:
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
     const std::vector<photonsplat::Bundle>& bundles() const { return m_bundles; }
     float halfSize() const { return m_half; }
+    // Tests: use these photons every frame instead of shooting them (stratification still applies).
+    void setFixedPhotons(std::vector<photonsplat::Photon> photons) { m_fixedPhotons = std::move(photons); }
 
 private:
     void updateGeometry(FrameContext& ctx);
@@ -56,6 +58,7 @@ private:
     std::optional<RayCaster> m_caster;
     float m_casterTime = -1.0f;
     std::vector<photonsplat::Photon> m_photonList;
+    std::optional<std::vector<photonsplat::Photon>> m_fixedPhotons;
     std::vector<photonsplat::Bundle> m_bundles;
     gl::Buffer m_bundleBuffer;
     gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
