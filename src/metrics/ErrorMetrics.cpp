@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -83,6 +84,19 @@ double psnr(const Image& testDisplay, const Image& referenceDisplay) {
     return 10.0 * std::log10(kPeak * kPeak / mse);
 }
 
+double rmsSum8Bit(const Image& testDisplay, const Image& referenceDisplay) {
+    checkSameSize(testDisplay, referenceDisplay);
+    auto q = [](float v) { return std::round(255.0 * std::clamp(static_cast<double>(v), 0.0, 1.0)); };
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (size_t i = 0; i < testDisplay.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = q(testDisplay.data()[i][c]) - q(referenceDisplay.data()[i][c]);
+            sum[c] += d * d;
+        }
+    const double n = static_cast<double>(testDisplay.pixelCount());
+    return std::sqrt(sum[0] / n) + std::sqrt(sum[1] / n) + std::sqrt(sum[2] / n);
+}
+
 Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, const CompareOptions& options,
                                      CompareMaps* maps) {
     if (test.width() != reference.width() || test.height() != reference.height())
@@ -104,6 +118,7 @@ Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, 
     const Image testDisplay = toDisplay(test, options.testToneMap);
     const Image referenceDisplay = toDisplay(reference, options.referenceToneMap);
     m.psnr = psnr(testDisplay, referenceDisplay);
+    m.rmsSum8 = rmsSum8Bit(testDisplay, referenceDisplay);
     m.ssim = meanSsim(testDisplay, referenceDisplay);
 
     ErrorMap flipLdr = ldrFlip(decodeDisplay(testDisplay), decodeDisplay(referenceDisplay), options.pixelsPerDegree);
@@ -125,6 +140,7 @@ nlohmann::json toJson(const ErrorMetrics& m) {
     j["relMse"] = m.relMse;
     j["mae"] = m.mae;
     j["psnr"] = std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json(nullptr);
+    j["rmsSum8"] = m.rmsSum8;
     j["ssim"] = m.ssim;
     j["flipLdr"] = m.flipLdr;
     j["flipHdr"] = m.flipHdr;

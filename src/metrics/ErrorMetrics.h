@@ -36,6 +36,8 @@ struct ErrorMetrics {
     double relMse = 0.0;  // mean of (x - r)^2 / (r^2 + ε), ε = kRelMseEpsilon, linear
     double mae = 0.0;     // mean of |x - r|, linear
     double psnr = 0.0;    // 10 log10(1 / MSE of display values), dB; +infinity for identical displays
+    double rmsSum8 = 0.0; // photon-splatting document's RMS: sum over R, G, B of the RMS difference of the
+                          // display values on the 0..255 scale (8-bit quantised), seed 004 section 5.1
     double ssim = 1.0;    // mean SSIM of the display images (metrics/Ssim.h)
     double flipLdr = 0.0; // mean LDR-FLIP of the display images
     double flipHdr = 0.0; // mean HDR-FLIP of the linear images
@@ -60,6 +62,10 @@ ErrorMap relativeSquaredErrorMap(const Image& test, const Image& reference, doub
 // reference's RMS, the measure of Nichols (2010) Figs. 4.9/4.13. 0 for two black images, +infinity for a
 // black reference and a test that is not. Same size required (checked).
 double relativeRmsError(const Image& test, const Image& reference);
+
+// Seed 004's error (section 5.1): for each channel the RMS over pixels of the difference of the 8-bit
+// display values (round(255 v)), summed over R, G and B. Same size required (checked).
+double rmsSum8Bit(const Image& testDisplay, const Image& referenceDisplay);
 
 // PSNR in dB of two display images with peak value 1; +infinity when they are identical.
 double psnr(const Image& testDisplay, const Image& referenceDisplay);

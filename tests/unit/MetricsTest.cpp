@@ -606,3 +606,15 @@ TEST(LightLeak, TwoRoomsMasksSplitAtTheWall) {
     EXPECT_TRUE(m.lit.inside(0, 0));
     EXPECT_TRUE(m.dark.inside(3, 0));
 }
+
+TEST(RmsSum8, SumsTheChannelsRmsOn8BitValues) {
+    // Two pixels; red differs by 10/255 and 0, green by 0 and 20/255, blue equal: RMS red
+    // sqrt(100/2) = 7.071, green sqrt(400/2) = 14.142, sum 21.213 (seed 004's error, 5.1).
+    Image a(2, 1), b(2, 1);
+    a.at(0, 0) = {100.0f / 255.0f, 50.0f / 255.0f, 0.5f};
+    b.at(0, 0) = {110.0f / 255.0f, 50.0f / 255.0f, 0.5f};
+    a.at(1, 0) = {0.2f, 30.0f / 255.0f, 0.1f};
+    b.at(1, 0) = {0.2f, 50.0f / 255.0f, 0.1f};
+    EXPECT_NEAR(rmsSum8Bit(a, b), std::sqrt(50.0) + std::sqrt(200.0), 1e-9);
+    EXPECT_EQ(rmsSum8Bit(a, a), 0.0);
+}
