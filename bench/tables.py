@@ -68,7 +68,7 @@ def vct_table(rec, path):
         lines += ["", "Shadow cone (Eq. 6.3) time over aperture, `cornell-box`, 256², 64³ (R13: falls as the aperture grows): " +
                   ", ".join(f"{a}° {rng(e['shadow_ms'])} ms" for a, e in r["shadowCone"].items()) + "."]
     if "lightLeak" in r:
-        lines += ["", f"`two-rooms` light-leak score (dark-room / lit-room mean luminance, 0 = no leak; `{r['lightLeakCommand']}`): " +
+        lines += ["", f"`two-rooms` light-leak score (dark-room / lit-room mean luminance, 0 = no leak; vct per storage@N, photon-splat at 1x and 3x bundle width, rsm without visibility; `{r['lightLeakCommand']}`): " +
                   ", ".join(f"`{k}` {v:.4f}" for k, v in r["lightLeak"].items()) + "."]
     lines += ["", f"Indirect light vs `{r['quality_reference']}`, 128², relMSE / LDR-FLIP:", ""]
     scenes = list(r["quality"].keys())
@@ -79,7 +79,39 @@ def vct_table(rec, path):
     return "\n".join(lines)
 
 
-GENERATORS = {"vct": vct_table}
+def photon_splat_table(rec, path):
+    r = rec["results"]
+    mean = lambda rows, key: sorted(x[key] for x in rows)[len(rows) // 2]
+    lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); `{rec['command']}`, "
+             f"{rec['size']} images, interleaved repetitions, medians; errors against `bounce reference --bounces 1 --indirect-only` "
+             "(relMSE / LDR-FLIP / the document's RMS on 8-bit values, summed over R, G, B). llvmpipe times are indicative.", ""]
+    for scene, e in r.items():
+        if not isinstance(e, dict) or "splat" not in e:
+            continue
+        hq = e["photonMapHq"]
+        hq_cmd = re.sub(r" --(out|stats) \S+", "", hq["command"])
+        lines += [f"`{scene}` — high-quality photon map (`{hq_cmd}`): {hq['render_ms']:.0f} ms, "
+                  f"relMSE {hq['vsReference']['relMse']:.4f}, RMS {hq['vsReference']['rmsSum8']:.1f}.", "",
+                  "| method | photons | frame / render ms | relMSE | FLIP | RMS (8-bit, Σ RGB) | RMS vs HQ photon map |", "|---|---|---|---|---|---|---|"]
+        for label, rows in e["splat"].items():
+            size, n = label.split("/")
+            lines.append(f"| photon-splat, {size} maps{' (3x)' if size == 'large' else ''} | {n} | {mean(rows, 'frame_ms'):.1f} (+{mean(rows, 'cpu_ms'):.1f} CPU) | "
+                         f"{mean([x['vsReference'] for x in rows], 'relMse'):.4f} | {mean([x['vsReference'] for x in rows], 'flipLdr'):.3f} | "
+                         f"{mean([x['vsReference'] for x in rows], 'rmsSum8'):.1f} | {mean([x['vsPhotonMapHq'] for x in rows], 'rmsSum8'):.1f} |")
+        for label, rows in e["photonMap"].items():
+            n, k = label.split("/")
+            lines.append(f"| photon-map, {k} | {n} | {mean(rows, 'render_ms'):.1f} | {mean([x['vsReference'] for x in rows], 'relMse'):.4f} | "
+                         f"{mean([x['vsReference'] for x in rows], 'flipLdr'):.3f} | {mean([x['vsReference'] for x in rows], 'rmsSum8'):.1f} | — |")
+        m5 = e["mapResolution"]
+        lines += ["", f"M5 depth maps 4² vs 32² (4096 photons): depth-maps {mean(m5['4'], 'depth_maps_ms'):.1f} vs {mean(m5['32'], 'depth_maps_ms'):.1f} ms, "
+                  f"splat {mean(m5['4'], 'splat_ms'):.1f} vs {mean(m5['32'], 'splat_ms'):.1f} ms (document: about the same cost).", ""]
+    if "gridBytes" in r:
+        lines += ["M1 memory: " + f"{r['photonBytesPerPhoton']} B per photon (Table 1 layout); dense stratification grid " +
+                  ", ".join(f"{g}³ {b / 1e6:.1f} MB" for g, b in r["gridBytes"].items()) + " (document: 576–640 MB at 256³)."]
+    return "\n".join(lines)
+
+
+GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table}
 
 
 def main():

@@ -158,10 +158,10 @@ def main():
     bench_bin = os.path.join(os.path.dirname(os.path.dirname(bounce)), "..", "bench", "bounce_bench")
     bench_bin = os.path.normpath(bench_bin)
     if os.path.exists(bench_bin):
-        out = subprocess.run([bench_bin, "--benchmark_filter=BM_VctLightLeak", "--benchmark_format=json"], check=True,
+        out = subprocess.run([bench_bin, "--benchmark_filter=LightLeak", "--benchmark_format=json"], check=True,
                              capture_output=True, text=True).stdout
         record["results"]["lightLeak"] = {b["label"]: b["leak"] for b in json.loads(out)["benchmarks"]}
-        record["results"]["lightLeakCommand"] = os.path.relpath(bench_bin, ROOT) + " --benchmark_filter=BM_VctLightLeak --benchmark_format=json"
+        record["results"]["lightLeakCommand"] = os.path.relpath(bench_bin, ROOT) + " --benchmark_filter=LightLeak --benchmark_format=json"
         print("leak", record["results"]["lightLeak"], flush=True)
 
     # Quality: indirect vs bounce reference --bounces 1 --indirect-only, 128^2.

@@ -201,3 +201,25 @@ TEST_F(PhotonSplatGpuTest, BadSettingsAreOneLineErrors) {
         EXPECT_NE(p.error().message.find(needle), std::string::npos) << p.error().message;
     }
 }
+
+TEST_F(PhotonSplatGpuTest, RsmInjectionCarriesTheSamePowerAsShotPhotons) {
+    // Method B (the reflective shadow map's VPLs) and method A (rays) estimate the same reflected
+    // flux: rho times the spot's flux, all of which lands on the plane.
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 1.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.intensity = glm::vec3(10.0f);
+    spot.cutoffAngle = glm::radians(30.0f);
+    const Scene scene = gputest::planeScene(spot);
+    const float expected = gputest::kPlaneAlbedo * spot.flux().r;
+    for (const char* injection : {"rays", "rsm"}) {
+        auto p = makePipeline(scene, "photon-splat", {{"injection", injection}, {"photons", "8192"}, {"rsmSize", "128"}, {"vplGrid", "64"}}, 16);
+        p->renderFrame(0);
+        double sum = 0.0;
+        for (const photonsplat::Photon& ph : splatOf(*p).photons()) sum += ph.power.r;
+        // 3 %: the RSM's cone rim crosses ~400 of its 128^2 texels (RsmGpuTest); the rays' sum has
+        // ~0.5 % Monte Carlo error at 8192 photons.
+        EXPECT_NEAR(sum, expected, 0.03 * expected) << injection;
+    }
+}

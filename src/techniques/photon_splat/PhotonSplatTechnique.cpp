@@ -22,8 +22,10 @@
 //  7. "blur" (optional, §3.5): separable Gaussian, 3..9 pixels.
 // Combine (§3.6) is the pipeline's full = direct + indirect.
 //
-// Deviations (docs/techniques/photon-splat.md): CPU injection per frame with a fixed seed (the
-// document shoots from the CPU too; the RSM variant it suggests is not implemented); C = photon
+// With injection=rsm, pass 1 is the document's method B: the regular VPLs of the shared reflective
+// shadow map (techniques/nichols) read back as photons.
+//
+// Deviations (docs/techniques/photon-splat.md): CPU injection per frame with a fixed seed; C = photon
 // power / (pi (2h)^2), the beam's radiance, since the document leaves the colour's scale to the
 // exposure; the `flux` estimate (not in the document) makes the splat an estimator of one-bounce
 // indirect light; the stratification keeps the grid sparse in memory but reports the dense grid's
@@ -33,6 +35,8 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "reference/Rng.h"
+#include "reference/Sampling.h"
 #include "techniques/photon_splat/splat_shared.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -64,6 +68,9 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("injection", m_injection, "rays: photons shot from the lights through the ray-casting service (the document's method A); rsm: the regular VPLs of a reflective shadow map (its method B for a GPU pipeline)", kInjections);
+    v.field("rsmSize", m_rsmSize, "RSM resolution per side with injection=rsm (per cube face for point/area lights)", 8, 2048);
+    v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer with injection=rsm (must divide rsmSize): vplGrid^2 photons per layer", 1, 256);
     v.field("photons", m_photonCount, "photons shot from the lights per frame (document: 2,500-50,000)", 1, 1 << 20);
     v.field("bounces", m_bounces, "diffuse hits at which photons are stored (1: single bounce, as implemented in the document)", 1, 8);
     v.field("seed", m_seed, "random seed of the photon paths", 0, 1 << 30);
@@ -87,6 +94,12 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
 Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     if (m_blur != 0 && (m_blur < 3 || m_blur % 2 == 0))
         return makeError("setting blur={}: the blur kernel is 0 (off) or 3, 5, 7 or 9 pixels", m_blur);
+    if (m_injection == "rsm") {
+        BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+        BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
+        BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
+        m_photonCount = std::max(m_photonCount, 6 * m_vplGrid * m_vplGrid);  // buffers sized for a cube RSM
+    }
     if (m_gridSize % 2 != 0) return makeError("setting gridSize={} must be even (the grid is walked in 2x2x2 blocks)", m_gridSize);
     ctx.scene.bounds(0.0f, m_lo, m_hi);
     m_diagonal = std::max(glm::length(m_hi - m_lo), 1e-3f);
@@ -138,6 +151,24 @@ void PhotonSplatTechnique::updateGeometry(FrameContext& ctx) {
     }
 }
 
+std::vector<photonsplat::Photon> PhotonSplatTechnique::rsmPhotons(FrameContext& ctx, uint64_t seed) {
+    std::vector<photonsplat::Photon> out;
+    if (!m_rsm->render(ctx, m_rsmSize)) return out;  // no light
+    m_vpls->extract(*m_rsm, m_vplGrid);
+    const std::vector<nichols::VplRecord> records = m_vpls->download();
+    for (size_t i = 0; i < records.size(); ++i) {
+        const nichols::VplRecord& r = records[i];
+        if (r.position.w < 0.5f || std::max(r.flux.r, std::max(r.flux.g, r.flux.b)) <= 0.0f) continue;
+        // The RSM's flux is already the reflected flux (albedo x incident); the photon leaves in a
+        // cosine-distributed direction about the VPL's normal, as a shot photon does.
+        const glm::vec3 n = glm::normalize(glm::vec3(r.normal));
+        Rng rng(seed, i, 0);
+        const Frame f(n);
+        out.push_back(photonsplat::Photon{glm::vec3(r.position), glm::vec3(r.flux), f.toWorld(cosineHemisphere(rng.next(), rng.next())), n});
+    }
+    return out;
+}
+
 void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     updateGeometry(ctx);
     {
@@ -147,7 +178,9 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         inj.photons = static_cast<uint32_t>(m_photonCount);
         inj.bounces = static_cast<uint32_t>(m_bounces);
         inj.seed = static_cast<uint64_t>(m_seed) + (m_reseed ? ctx.frame : 0u);
-        m_photonList = m_fixedPhotons ? *m_fixedPhotons : photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
+        if (m_fixedPhotons) m_photonList = *m_fixedPhotons;
+        else if (m_injection == "rsm") m_photonList = rsmPhotons(ctx, inj.seed);
+        else m_photonList = photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
         ctx.counters["injectMs"] = msSince(t0);
         ctx.counters["photonsStored"] = static_cast<double>(m_photonList.size());
         ctx.counters["photonBytes"] = static_cast<double>(m_photonList.size() * photonsplat::kThesisPhotonBytes);

@@ -2,6 +2,7 @@
 // `photon-splat`: photon splatting with orthographic bundles (seed 004). See PhotonSplatTechnique.cpp
 // for the passes and docs/techniques/photon-splat.md for settings and deviations.
 #include "techniques/Technique.h"
+#include "techniques/nichols/RegularVpls.h"
 #include "techniques/photon_splat/PhotonInjection.h"
 
 #include <array>
@@ -21,6 +22,7 @@ public:
     static constexpr std::array<std::string_view, 3> kFilters{"gaussian", "tent", "box"};
     static constexpr std::array<std::string_view, 2> kEstimates{"normalized", "flux"};
     static constexpr std::array<std::string_view, 4> kDebugViews{"none", "overlap", "accumulation", "grid"};
+    static constexpr std::array<std::string_view, 2> kInjections{"rays", "rsm"};
 
     // For tests: the photons and bundles of the last frame.
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
@@ -31,8 +33,13 @@ public:
 
 private:
     void updateGeometry(FrameContext& ctx);
+    // Method B of 3.2: the reflective shadow map's regular VPLs as photons (GPU, read back).
+    std::vector<photonsplat::Photon> rsmPhotons(FrameContext& ctx, uint64_t seed);
 
     // Settings (docs/techniques/photon-splat.md gives the sources of the defaults).
+    std::string m_injection{"rays"};
+    int m_rsmSize = 256;
+    int m_vplGrid = 32;
     int m_photonCount = 1024;
     int m_bounces = 1;
     int m_seed = 0;
@@ -56,6 +63,8 @@ private:
     glm::vec3 m_lo{0.0f}, m_hi{0.0f};
     int m_maxLayers = 256;
     std::optional<RayCaster> m_caster;
+    std::optional<nichols::ReflectiveShadowMap> m_rsm;
+    std::optional<nichols::RegularVpls> m_vpls;
     float m_casterTime = -1.0f;
     std::vector<photonsplat::Photon> m_photonList;
     std::optional<std::vector<photonsplat::Photon>> m_fixedPhotons;
