@@ -57,13 +57,15 @@ TEST_F(PhotonSplatGpuTest, OnePhotonSplatsItsFootprint) {
         ASSERT_EQ(splatOf(*p).bundles().size(), 1u);
         const Image img = p->readback(Component::Indirect);
         // rho / pi * Phi * w_n integrates over the plane to rho Phi / pi (the kernel has unit
-        // integral; the beam meets the plane head on). Pixel-centre sampling of a 1 m square at
-        // 3.1 cm pixels: the edge rows carry ~6 % of the box's area, the smooth kernels far less.
+        // integral; the beam meets the plane head on). Measured 1.0000 (box, tent), 1.0003
+        // (Gaussian): the square's edges fall on pixel boundaries here; 1 % leaves room for the
+        // pixel-centre sampling of an edge that does not.
         double integral = 0.0;
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x) integral += double(img.at(x, y).r) * pixel * pixel;
         const double expected = gputest::kPlaneAlbedo * 2.0 / glm::pi<double>();
-        EXPECT_NEAR(integral, expected, 0.07 * expected) << filter;
+        RecordProperty(std::string(filter) + "_integralRatio", std::to_string(integral / expected));
+        EXPECT_NEAR(integral, expected, 0.01 * expected) << filter;
         if (std::string(filter) == "box") {
             // Inside the square the level is rho / pi * Phi / (2h)^2 exactly; outside it is zero.
             const float level = gputest::kPlaneAlbedo / glm::pi<float>() * 2.0f / 1.0f;
