@@ -12,7 +12,9 @@
 //   5   the camera G-buffer (shared Pipeline pass).
 //   6   "split": positions and normals into an n×m atlas of interleaved sub-images (§5.1).
 //   7   "accum": per atlas pixel, irradiance from the VPLs of its tile, with paraboloid shadow
-//       lookups and the per-VPL irradiance clamp (no receiver albedo).
+//       lookups and the per-VPL irradiance clamp (no receiver albedo). VPLs are dealt to tiles in
+//       creation order (§7) and keep their tile while they live (TileAssignment), so replacing a few
+//       VPLs does not shift the interleaving pattern of the others.
 //   8   "combine": the inverse of the split.
 //   9   "filter": the geometry-aware n×m box filter (Fig. 5), then the receiver's albedo/π.
 //
