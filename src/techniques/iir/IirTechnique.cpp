@@ -12,7 +12,9 @@
 //   5   the camera G-buffer (shared Pipeline pass).
 //   6   "split": positions and normals into an n×m atlas of interleaved sub-images (§5.1).
 //   7   "accum": per atlas pixel, irradiance from the VPLs of its tile, with paraboloid shadow
-//       lookups and the per-VPL irradiance clamp (no receiver albedo).
+//       lookups and the per-VPL irradiance clamp (no receiver albedo). VPLs are dealt to tiles in
+//       creation order (§7) and keep their tile while they live (TileAssignment), so replacing a few
+//       VPLs does not shift the interleaving pattern of the others.
 //   8   "combine": the inverse of the split.
 //   9   "filter": the geometry-aware n×m box filter (Fig. 5), then the receiver's albedo/π.
 //
@@ -192,6 +194,7 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
     }
     m_slots.assign(static_cast<size_t>(m_maxLights), SlotAttributes{});
     m_sampleFlux.assign(static_cast<size_t>(m_maxLights), glm::vec3(0.0f));
+    m_tiles = TileAssignment(static_cast<uint32_t>(m_tilesX * m_tilesY), static_cast<size_t>(m_maxLights));
     // §4.6: "a heavily blurred version of the texture": its mean colour.
     m_textureMeans.clear();
     for (const TextureImage& t : ctx.scene.textures) {
@@ -307,6 +310,14 @@ void IirTechnique::updateVpls(FrameContext& ctx, const LightPose& pose) {
     renderShadowMaps(ctx, newVpls);
 }
 
+glm::vec3 IirTechnique::paraboloidTangent(glm::vec3 normal) { return anyTangent(normal); }
+
+glm::vec3 IirTechnique::paraboloidOrigin(glm::vec3 position, glm::vec3 normal) const {
+    return position + normal * (kSurfaceOffsetInDiagonals * m_sceneDiagonal);
+}
+
+float IirTechnique::paraboloidFar() const { return kShadowFarInDiagonals * m_sceneDiagonal; }
+
 void IirTechnique::renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>& slots) {
     auto scope = ctx.timers.scope("sm-rendering");
     m_mapsRenderedLastFrame = static_cast<uint32_t>(slots.size());
@@ -353,7 +364,10 @@ void IirTechnique::renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>
 void IirTechnique::uploadVpls() {
     const VplDistribution& dist = *m_distribution;
     const float offset = kSurfaceOffsetInDiagonals * m_sceneDiagonal;
-    // §7: VPLs go to tiles in the order they were generated, round robin, so tiles get equal counts.
+    // §7: VPLs go to tiles in the order they were generated, round robin, so tiles get equal counts;
+    // a VPL keeps its tile while it lives (TileAssignment), so the interleaving pattern of the
+    // surviving VPLs does not shift when others are replaced.
+    m_tiles.update(dist.samples());
     std::vector<SlotId> order;
     for (size_t i = 0; i < dist.samples().size(); ++i)
         if (dist.samples()[i].kind == SampleKind::Vpl) order.push_back(static_cast<SlotId>(i));
@@ -371,7 +385,11 @@ void IirTechnique::uploadVpls() {
     const size_t tiles = static_cast<size_t>(m_tilesX * m_tilesY);
     std::vector<uint32_t> data(tiles + 1, 0);
     std::vector<std::vector<uint32_t>> lists(tiles);
-    for (size_t k = 0; k < order.size(); ++k) lists[k % tiles].push_back(static_cast<uint32_t>(k));
+    for (size_t k = 0; k < order.size(); ++k) {
+        const int tile = m_tiles.tileOf(order[k]);
+        BOUNCE_CHECK(tile >= 0 && static_cast<size_t>(tile) < tiles, "iir: VPL in slot {} has no tile", order[k]);
+        lists[static_cast<size_t>(tile)].push_back(static_cast<uint32_t>(k));
+    }
     for (size_t t = 0; t < tiles; ++t) {
         data[t] = static_cast<uint32_t>(data.size());
         data.insert(data.end(), lists[t].begin(), lists[t].end());

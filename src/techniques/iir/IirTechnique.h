@@ -6,6 +6,7 @@
 #include "gpu/Program.h"
 #include "reference/RayCaster.h"
 #include "techniques/Technique.h"
+#include "techniques/iir/TileAssignment.h"
 #include "techniques/iir/VplDistribution.h"
 
 #include <memory>
@@ -34,6 +35,21 @@ public:
     const std::vector<glm::vec3>& sampleFlux() const { return m_sampleFlux; }
     glm::vec3 primaryFlux() const { return m_primary.flux; }
     uint32_t shadowMapsRenderedLastFrame() const { return m_mapsRenderedLastFrame; }
+    // The interleaving tile of each VPL (kept for the VPL's life, TileAssignment.h).
+    const TileAssignment& tiles() const { return m_tiles; }
+    // The buffers the accumulation reads: iir.vpls (64 B per VPL: position with w = slot, normal,
+    // tangent, intensity) and iir.tiles (n*m + 1 offsets, then each tile's VPL indices).
+    const gl::Buffer& vplBuffer() const { return m_vplBuffer; }
+    const gl::Buffer& tileBuffer() const { return m_tileBuffer; }
+    // The paraboloid shadow maps (GL_DEPTH_COMPONENT16 2D array, layer = slot) and the unit normal
+    // (the map's +z) of the VPL in a slot, for tests that check the maps' contents.
+    const gl::Texture& shadowMaps() const { return m_shadowMaps; }
+    glm::vec3 slotNormal(SlotId slot) const { return m_slots.at(slot).normal; }
+    // The paraboloid frame's +x for a normal (+y is normal x tangent) and the world position the map
+    // is rendered from for a VPL at `position` with `normal`.
+    static glm::vec3 paraboloidTangent(glm::vec3 normal);
+    glm::vec3 paraboloidOrigin(glm::vec3 position, glm::vec3 normal) const;
+    float paraboloidFar() const;
 
     // The primary light for `scene` at time t (exposed for tests).
     static IirPrimaryLight primaryLight(const Scene& scene, float time);
@@ -68,6 +84,7 @@ private:
     std::vector<SlotAttributes> m_slots;
     std::vector<glm::vec3> m_sampleFlux;
     std::vector<glm::vec3> m_textureMeans;
+    TileAssignment m_tiles;
     float m_sceneDiagonal = 1.0f;
     glm::ivec2 m_tileSize{1};
     uint32_t m_mapsRenderedLastFrame = 0;
