@@ -27,15 +27,23 @@ Expected<MultiresBuffer> MultiresBuffer::create() {
 }
 
 void MultiresBuffer::begin(const MinMaxPyramid& pyramid) {
+    std::vector<glm::ivec2> sizes;
+    for (int k = 0; k < pyramid.levels(); ++k) sizes.push_back(pyramid.levelSize(k));
+    begin(sizes);
+}
+
+void MultiresBuffer::begin(const std::vector<glm::ivec2>& levelSizes) {
+    BOUNCE_CHECK(!levelSizes.empty(), "multiresolution buffer has at least one level");
     std::vector<glm::ivec2> sizes, origins;
-    const glm::ivec2 base = pyramid.levelSize(0);
+    const glm::ivec2 base = levelSizes[0];
+    const int levelCount = static_cast<int>(levelSizes.size());
     int y = 0;
-    for (int k = 0; k < pyramid.levels(); ++k) {
-        sizes.push_back(pyramid.levelSize(k));
+    for (int k = 0; k < levelCount; ++k) {
+        sizes.push_back(levelSizes[static_cast<size_t>(k)]);
         origins.push_back(k == 0 ? glm::ivec2(0) : glm::ivec2(base.x, y));
-        if (k > 0) y += pyramid.levelSize(k).y;
+        if (k > 0) y += levelSizes[static_cast<size_t>(k)].y;
     }
-    const glm::ivec2 atlasSize(base.x + (pyramid.levels() > 1 ? pyramid.levelSize(1).x : 0), base.y);
+    const glm::ivec2 atlasSize(base.x + (levelCount > 1 ? levelSizes[1].x : 0), base.y);
     BOUNCE_CHECK(y <= base.y, "atlas column of coarse levels fits the base height");
     if (atlasSize != m_atlasSize || sizes != m_sizes) {
         m_atlasSize = atlasSize;
@@ -46,7 +54,7 @@ void MultiresBuffer::begin(const MinMaxPyramid& pyramid) {
         d.target = GL_TEXTURE_2D_ARRAY;
         d.width = base.x;
         d.height = base.y;
-        d.levels = pyramid.levels();
+        d.levels = levelCount;
         d.format = GL_RGBA32F;
         d.minFilter = GL_NEAREST_MIPMAP_NEAREST;
         d.magFilter = GL_NEAREST;

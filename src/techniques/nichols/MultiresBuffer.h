@@ -16,6 +16,9 @@ public:
 
     // (Re)allocates for `pyramid`'s levels and clears the atlas (colour and stencil).
     void begin(const MinMaxPyramid& pyramid);
+    // The same for explicit level sizes (level 0 first, each the floor half of the previous): tests fill
+    // the atlas with synthetic data through atlas() and run upsample() on it.
+    void begin(const std::vector<glm::ivec2>& levelSizes);
     // Marks each covered pixel's cell at exactly one level in the stencil (ref 1).
     void stencilSetup(const MinMaxPyramid& pyramid);
     // Draws `program` (full-screen-triangle vertex stage) over every level's rectangle with the stencil
