@@ -180,9 +180,9 @@ TEST_F(OneBounceLevelGpuTest, IirMatchesTheReferenceLevelAfterThirtyFramesOfLigh
     const Level l = compare(img, ref, "iir after 30 frames of light motion");
     RecordProperty("meanRatio", std::to_string(l.meanRatio));
     RecordProperty("relRms", std::to_string(l.relRms));
-    // As above (5 %). Measured mean 1.015, relative RMS 0.0862 (the moved spot lights the floor farther
+    // As above (5 %). Measured mean 1.016, relative RMS 0.0984 (the moved spot lights the floor farther
     // from the wall, so the wall's light is smoother and the VPL noise smaller than at frame 0). Frames 1..30
     // are all rendered, so the VPL set at frame 30 is the incremental one (§4.2), not a fresh one.
     EXPECT_NEAR(l.meanRatio, 1.0, 0.05);
-    EXPECT_LT(l.relRms, 0.115);
+    EXPECT_LT(l.relRms, 0.13);
 }
