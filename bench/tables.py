@@ -16,7 +16,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def newest(name):
-    files = sorted(glob.glob(os.path.join(ROOT, "bench/results", f"{name}-*.json")))
+    # NAME-YYYY-MM-DD.json only (not NAME-tests-..., a different record kind).
+    files = sorted(f for f in glob.glob(os.path.join(ROOT, "bench/results", f"{name}-*.json"))
+                   if re.fullmatch(rf"{re.escape(name)}-\d{{4}}-\d{{2}}-\d{{2}}\.json", os.path.basename(f)))
     if not files:
         return None, None
     with open(files[-1]) as f:
