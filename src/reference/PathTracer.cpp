@@ -143,20 +143,13 @@ Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSett
     return tracer;
 }
 
-PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree)
-    : m_settings(settings),
-      m_time(scene.timeOfFrame(settings.frame)),
-      m_embree(std::move(embree)),
-      m_lights(scene, m_embree),
-      m_camera(scene.camera.at(m_time), settings.width, settings.height),
-      m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
-                                                                          : settings.bounces + 1) {
-    m_shading.resize(m_embree.geometries().size());
-    for (size_t i = 0; i < m_shading.size(); ++i) {
-        const SceneGeometry& g = m_embree.geometries()[i];
-        Shading& s = m_shading[i];
+std::vector<PathTracer::Shading> PathTracer::gatherShading(const Scene& scene, const EmbreeScene& embree, float time) {
+    std::vector<Shading> shading(embree.geometries().size());
+    for (size_t i = 0; i < shading.size(); ++i) {
+        const SceneGeometry& g = embree.geometries()[i];
+        Shading& s = shading[i];
         if (g.kind == SceneGeometry::Kind::AreaLight) {
-            s.emitted = scene.lights[g.lightIndex].radiance;
+            s.emitted = scene.lights[g.lightIndex].at(time).radiance;
             s.absorber = true;
         } else {
             const Material& m = scene.materials[g.materialIndex];
@@ -169,6 +162,18 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
         }
         s.emissive = maxComponent(s.emitted) > 0.0f;
     }
+    return shading;
+}
+
+PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, EmbreeScene embree)
+    : m_settings(settings),
+      m_time(scene.timeOfFrame(settings.frame)),
+      m_embree(std::move(embree)),
+      m_lights(scene, m_embree),
+      m_camera(scene.camera.at(m_time), settings.width, settings.height),
+      m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
+                                                                          : settings.bounces + 1) {
+    m_shading = gatherShading(scene, m_embree, m_time);
     // What the kernel needs of each geometry, in one place (it reads the triangles themselves from
     // Embree's copy, as surface() does: a per-triangle table was 10 % slower on atrium's 100K
     // triangles, from cache misses).

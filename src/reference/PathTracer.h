@@ -109,6 +109,9 @@ public:
         bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only)
         bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
     };
+    // The shading of every geometry of `embree` (built from `scene`, lights evaluated at `time`):
+    // shared by the path tracer and the photon mapper so that both read the scene the same way.
+    static std::vector<Shading> gatherShading(const Scene& scene, const EmbreeScene& embree, float time);
 
 private:
     static constexpr int kPacketSize = lambert::kLanes;  // paths traced side by side

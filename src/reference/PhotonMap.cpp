@@ -5,6 +5,7 @@
 #include "reference/CameraRays.h"
 #include "reference/EmbreeScene.h"
 #include "reference/LightSampler.h"
+#include "reference/PathTracer.h"
 #include "reference/Rng.h"
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
@@ -48,13 +49,7 @@ constexpr float kPlaneSlack = 1e-5f;
 // fewer than k accepted; past that, the estimate uses what it has inside the last candidate.
 constexpr int kMaxCandidateFactor = 16;
 
-struct Shading {
-    const Material* material = nullptr;  // null for area lights
-    const Image* texture = nullptr;
-    glm::vec3 emitted{0.0f};
-    glm::vec3 diffuseAlbedo{0.0f};
-    bool emissive = false, twoSided = false, absorber = false, lambertian = false;
-};
+using Shading = PathTracer::Shading;
 
 // Flux (W, per channel) of one light-list entry: what it emits in total.
 glm::vec3 entryFlux(const LightSampler::Entry& e, float sceneRadius) {
@@ -219,24 +214,7 @@ struct PhotonMapper::Impl {
         sceneRadius = 0.5f * glm::length(hi - lo);  // as LightSampler's weight of directional lights
         maxStoreReflections = st.bounces == PhotonMapSettings::kUnbounded ? kMaxUnboundedReflections - 1 : st.bounces;
         minStoreReflections = st.indirectOnly ? 1 : 0;
-        shading.resize(embree.geometries().size());
-        for (size_t i = 0; i < shading.size(); ++i) {
-            const SceneGeometry& g = embree.geometries()[i];
-            Shading& sh = shading[i];
-            if (g.kind == SceneGeometry::Kind::AreaLight) {
-                sh.emitted = s.lights[g.lightIndex].at(time).radiance;
-                sh.absorber = true;
-            } else {
-                const Material& m = s.materials[g.materialIndex];
-                sh.material = &m;
-                if (m.baseColorTexture >= 0) sh.texture = &s.textures[static_cast<size_t>(m.baseColorTexture)].image;
-                sh.emitted = m.emission;
-                sh.twoSided = m.twoSided;
-                sh.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
-                sh.lambertian = m.specularF0 == 0.0f && m.metallic == 0.0f;
-            }
-            sh.emissive = maxComponent(sh.emitted) > 0.0f;
-        }
+        shading = PathTracer::gatherShading(s, embree, time);
     }
 
     struct Hit {

@@ -1,45 +1,29 @@
 #include "reference/PhotonMapJob.h"
 
-#include "core/FileIo.h"
-#include "core/ImageIo.h"
+#include "reference/JobOutputs.h"
 
-#include <embree3/rtcore_config.h>
 #include <nanoflann.hpp>
 #include <tbb/task_arena.h>
-#include <tbb/version.h>
 
 namespace bounce {
 
 Expected<PhotonMapResult> runPhotonMapJob(const Scene& scene, const PhotonMapJob& job,
                                           const PhotonMapProgressCallback& progress) {
-    BOUNCE_TRY(const ImageFormat format, imageFormatFor(job.output));
-    BOUNCE_TRY_VOID(checkWritable(job.output));
-    if (!job.stats.empty()) {
-        if (job.stats.extension() != ".json")
-            return makeError("{}: the run record is JSON: use a .json file name", job.stats.string());
-        BOUNCE_TRY_VOID(checkWritable(job.stats));
-    }
+    BOUNCE_TRY(const ImageFormat format, checkJobOutputs(job.output, job.stats));
     BOUNCE_TRY(const PhotonMapper mapper, PhotonMapper::create(scene, job.settings));
     PhotonMapResult result = mapper.render(progress);
-    const ToneMap toneMap = format == ImageFormat::Png ? job.toneMap : ToneMap{};
-    BOUNCE_TRY_VOID(writeImage(job.output, result.radiance, toneMap));
-    if (!job.stats.empty())
-        BOUNCE_TRY_VOID(writeTextFileAtomic(job.stats, photonMapRunRecord(scene, job, result).dump(2) + "\n"));
+    BOUNCE_TRY_VOID(writeJobOutputs(job.output, job.stats, format, result.radiance, job.toneMap,
+                                    job.stats.empty() ? nlohmann::ordered_json() : photonMapRunRecord(scene, job, result)));
     return result;
 }
 
 nlohmann::ordered_json photonMapRunRecord(const Scene& scene, const PhotonMapJob& job, const PhotonMapResult& r) {
     const PhotonMapSettings& s = job.settings;
-    nlohmann::ordered_json params = nlohmann::ordered_json::object();
-    for (const auto& [key, value] : job.sceneParams) params[key] = value;
-    nlohmann::ordered_json output = {{"path", job.output.string()}};
-    if (auto format = imageFormatFor(job.output); format && *format == ImageFormat::Png)
-        output["toneMap"] = {{"curve", toneCurveName(job.toneMap.curve)}, {"exposureEv", job.toneMap.exposureEv}};
     const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
     const double render = r.renderSeconds();
-    return {
+    nlohmann::ordered_json record = {
         {"kind", "photon-map"},
-        {"scene", {{"name", scene.name}, {"source", scene.source}, {"asked", job.scene}, {"params", params}}},
+        {"scene", jobSceneRecord(scene, job.scene, job.sceneParams)},
         {"settings",
          {{"width", s.width},
           {"height", s.height},
@@ -55,7 +39,7 @@ nlohmann::ordered_json photonMapRunRecord(const Scene& scene, const PhotonMapJob
           {"threads", threads},
           {"frame", s.frame},
           {"timeSeconds", scene.timeOfFrame(s.frame)}}},
-        {"output", output},
+        {"output", jobOutputRecord(job.output, job.toneMap)},
         {"result",
          {{"photonsEmitted", r.photonsEmitted},
           {"photonsStored", r.photonsStored},
@@ -77,11 +61,11 @@ nlohmann::ordered_json photonMapRunRecord(const Scene& scene, const PhotonMapJob
         {"memory",
          {{"bytesPerPhoton", sizeof(Photon)},
           {"mapBytes", r.mapBytes}}},
-        {"renderer",
-         {{"embree", fmt::format("{}.{}.{}", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH)},
-          {"tbb", TBB_VERSION_STRING},
-          {"nanoflann", fmt::format("{}.{}.{}", NANOFLANN_VERSION >> 8, (NANOFLANN_VERSION >> 4) & 0xf, NANOFLANN_VERSION & 0xf)}}},
     };
+    nlohmann::ordered_json renderer = jobLibraryVersions();
+    renderer["nanoflann"] = fmt::format("{}.{}.{}", NANOFLANN_VERSION >> 8, (NANOFLANN_VERSION >> 4) & 0xf, NANOFLANN_VERSION & 0xf);
+    record["renderer"] = renderer;
+    return record;
 }
 
 }  // namespace bounce

@@ -1,0 +1,56 @@
+#pragma once
+// The options `bounce reference` and `bounce photon-map` share (scene, size, light-transport scope,
+// time limit, seed, threads, frame, outputs, tone mapping, progress): declared once, checked once
+// before any work. Each command adds its own (--spp, --photons, ...) and fills its job from these.
+#include "core/Error.h"
+#include "core/ToneMap.h"
+#include "scene/SceneLoader.h"
+
+#include <CLI/CLI.hpp>
+#include <glm/vec2.hpp>
+
+#include <string>
+#include <vector>
+
+namespace bounce {
+
+struct CpuJobArgs {
+    std::string scene;
+    std::vector<std::string> sceneParams;
+    std::string size = "512x512";
+    std::string bounces = "unbounded";
+    bool indirectOnly = false;
+    bool diffuseOnly = false;
+    double timeLimit = 0.0;
+    uint64_t seed = 0;
+    int threads = 0;
+    uint32_t frame = 0;
+    std::string out;
+    std::string stats;
+    float exposureEv = 0.0f;
+    std::string toneCurve = "aces";
+    bool progress = false;
+    CLI::Option* exposureOption = nullptr;
+    CLI::Option* toneCurveOption = nullptr;
+};
+
+// The help texts that differ between the commands.
+struct CpuJobHelp {
+    const char* bounces;
+    const char* indirectOnly;
+    const char* diffuseOnly;
+    const char* timeLimit;
+};
+
+void addCpuJobOptions(CLI::App* cmd, CpuJobArgs& args, const CpuJobHelp& help);
+
+// The shared options, checked: one-line errors name the flag. `command` prefixes the warnings.
+struct CpuJobCommon {
+    SceneParams sceneParams;
+    glm::ivec2 size{0};
+    int bounces = 0;  // kUnbounded (-1) for 'unbounded'
+    ToneMap toneMap;
+};
+Expected<CpuJobCommon> checkCpuJobArgs(const CpuJobArgs& args, const char* command, int unbounded);
+
+}  // namespace bounce
