@@ -7,6 +7,7 @@
 #include "metrics/ErrorMetrics.h"
 #include "render/RenderSettings.h"
 #include "scene/SceneLoader.h"
+#include "reference/PathTracer.h"
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
 
@@ -62,6 +63,20 @@ inline const Image& convergedLimit(const std::string& sceneName, int size) {
     EXPECT_TRUE(scene.ok()) << sceneName;
     const std::string rsm = std::to_string(kLimitRsmSize);
     return cache[key] = renderIndirect(*scene, "rsm", {{"rsmSize", rsm}, {"vplGrid", rsm}}, size);
+}
+
+// The path tracer's one-bounce indirect light (bounces 1, indirect only) of `scene` at frame
+// `frame`: the scope every single-bounce technique is compared with.
+inline Image oneBounceReference(const Scene& scene, int size, uint32_t frame, uint32_t spp) {
+    PathTracerSettings pts;
+    pts.width = pts.height = size;
+    pts.samplesPerPixel = spp;
+    pts.bounces = 1;
+    pts.indirectOnly = true;
+    pts.frame = frame;
+    auto tracer = PathTracer::create(scene, pts);
+    EXPECT_TRUE(tracer.ok()) << tracer.error().message;
+    return tracer->render().radiance;
 }
 
 inline double totalRadiance(const Image& image) {

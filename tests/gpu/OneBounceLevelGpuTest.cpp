@@ -86,16 +86,8 @@ Scene floorAndWall(bool moving = false) {
 // one-bounce light reaches the wall through the small lit disc, found by cosine sampling), which would
 // hide every technique's error; at 4096 its noise is about 4 % (measured: 256 spp vs 4096 spp of
 // another seed), added in quadrature to each technique's error below. About 3 s at 64^2.
-Image oneBounceReference(const Scene& scene, uint32_t frame = 0, uint32_t spp = 4096) {
-    PathTracerSettings pts;
-    pts.width = pts.height = kSize;
-    pts.samplesPerPixel = spp;
-    pts.bounces = 1;
-    pts.indirectOnly = true;
-    pts.frame = frame;
-    auto tracer = PathTracer::create(scene, pts);
-    EXPECT_TRUE(tracer.ok()) << tracer.error().message;
-    return tracer->render().radiance;
+Image oneBounceReference(const Scene& scene, uint32_t frame = 0) {
+    return nicholstest::oneBounceReference(scene, kSize, frame, 4096);
 }
 
 double meanOf(const Image& image) { return totalRadiance(image) / (3.0 * image.width() * image.height()); }

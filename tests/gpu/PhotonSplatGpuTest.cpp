@@ -20,17 +20,6 @@ class PhotonSplatGpuTest : public gputest::GpuTest {};
 
 PhotonSplatTechnique& splatOf(Pipeline& p) { return dynamic_cast<PhotonSplatTechnique&>(p.technique()); }
 
-Image oneBounce(const Scene& scene, int size, uint32_t frame = 0) {
-    PathTracerSettings pts;
-    pts.width = pts.height = size;
-    pts.samplesPerPixel = 256;
-    pts.bounces = 1;
-    pts.indirectOnly = true;
-    pts.frame = frame;
-    auto tracer = PathTracer::create(scene, pts);
-    EXPECT_TRUE(tracer.ok());
-    return tracer->render().radiance;
-}
 
 double meanOf(const Image& image) { return totalRadiance(image) / (3.0 * image.width() * image.height()); }
 
@@ -121,7 +110,7 @@ TEST_F(PhotonSplatGpuTest, FluxEstimateAgainstTheOneBounceReference) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
     constexpr int kSize = 64;
-    const Image ref = oneBounce(*scene, kSize);
+    const Image ref = oneBounceReference(*scene, kSize, 0, 256);
     const Image img = renderIndirect(*scene, "photon-splat", {{"estimate", "flux"}, {"photons", "4096"}}, kSize);
     auto m = compareImages(img, ref);
     ASSERT_TRUE(m.ok());
@@ -147,7 +136,7 @@ TEST_F(PhotonSplatGpuTest, FollowsTheMovingSpotOfCornellBoxDynamic) {
     for (uint32_t frame : {0u, 30u}) {
         p->renderFrame(frame);
         const Image img = p->readback(Component::Indirect);
-        auto m = compareImages(img, oneBounce(*scene, kSize, frame));
+        auto m = compareImages(img, oneBounceReference(*scene, kSize, frame, 256));
         ASSERT_TRUE(m.ok());
         worst = std::max(worst, m->relMse);
         RecordProperty("relMse_frame" + std::to_string(frame), std::to_string(m->relMse));
@@ -224,4 +213,23 @@ TEST_F(PhotonSplatGpuTest, RsmInjectionCarriesTheSamePowerAsShotPhotons) {
         // ~0.5 % Monte Carlo error at 8192 photons.
         EXPECT_NEAR(sum, expected, 0.03 * expected) << injection;
     }
+}
+
+TEST_F(PhotonSplatGpuTest, BlurSpreadsTheFootprintAndKeepsItsIntegral) {
+    constexpr int kSize = 128;
+    const Scene scene = litPlane();
+    const photonsplat::Photon photon{{0.0f, 0.5f, 0.0f}, glm::vec3(2.0f), {0.0f, -1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}};
+    auto render = [&](const char* blur) {
+        auto p = makePipeline(scene, "photon-splat", {{"estimate", "flux"}, {"filter", "box"}, {"mapSize", "1.0"}, {"blur", blur}}, kSize);
+        splatOf(*p).setFixedPhotons({photon});
+        p->renderFrame(0);
+        return p->readback(Component::Indirect);
+    };
+    const Image sharp = render("0"), blurred = render("9");
+    // The box footprint spans pixels 48..79; one pixel outside is 0 sharp and lit after the blur, and
+    // the normalised Gaussian (far from the image border) keeps the sum to float rounding.
+    EXPECT_EQ(sharp.at(kSize / 2, 47).r, 0.0f);
+    EXPECT_GT(blurred.at(kSize / 2, 47).r, 0.0f);
+    EXPECT_LT(blurred.at(kSize / 2 + 16, kSize / 2 + 16).r, sharp.at(kSize / 2 + 15, kSize / 2 + 15).r);
+    EXPECT_NEAR(totalRadiance(blurred), totalRadiance(sharp), 1e-4 * totalRadiance(sharp));
 }

@@ -55,17 +55,6 @@ size_t countDifferent(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
     return c;
 }
 
-Image oneBounceReference(const Scene& scene, int size, uint32_t frame = 0, int spp = 256) {
-    PathTracerSettings pts;
-    pts.width = pts.height = size;
-    pts.samplesPerPixel = spp;
-    pts.bounces = 1;
-    pts.indirectOnly = true;
-    pts.frame = frame;
-    auto tracer = PathTracer::create(scene, pts);
-    EXPECT_TRUE(tracer.ok());
-    return tracer->render().radiance;
-}
 
 double meanOf(const Image& image) { return totalRadiance(image) / (3.0 * image.width() * image.height()); }
 
@@ -271,7 +260,7 @@ TEST_F(VctGpuTest, IndirectLightAgainstTheOneBounceReference) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
     constexpr int kSize = 64;
-    const Image ref = oneBounceReference(*scene, kSize);
+    const Image ref = oneBounceReference(*scene, kSize, 0, 256);
     const double refMean = meanOf(ref);
     ASSERT_GT(refMean, 0.0);
     // Measured on llvmpipe (64^3 grid, 64^2 image; docs/techniques/vct.md "Quality"): relMSE

@@ -1,5 +1,6 @@
 #include "techniques/photon_splat/PhotonInjection.h"
 
+#include "core/Image.h"
 #include "reference/Rng.h"
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
@@ -16,8 +17,6 @@ namespace bounce::photonsplat {
 namespace {
 
 constexpr float kPi = glm::pi<float>();
-
-float luminanceOf(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
 glm::vec3 uniformSphere(float u1, float u2) {
     const float z = 1.0f - 2.0f * u1;
@@ -94,7 +93,7 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
     std::vector<Light> lights;
     for (const Light& l : scene.lights) lights.push_back(l.at(time));
     std::vector<float> weight;
-    for (const Light& l : lights) weight.push_back(std::max(luminanceOf(emittedFlux(l, radius)), 0.0f));
+    for (const Light& l : lights) weight.push_back(std::max(luminance(emittedFlux(l, radius)), 0.0f));
     const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
     if (!(total > 0.0f) || settings.photons == 0) return out;
     for (size_t li = 0; li < lights.size(); ++li) {

@@ -98,7 +98,6 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
         BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
         BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
         BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
-        m_photonCount = std::max(m_photonCount, 6 * m_vplGrid * m_vplGrid);  // buffers sized for a cube RSM
     }
     if (m_gridSize % 2 != 0) return makeError("setting gridSize={} must be even (the grid is walked in 2x2x2 blocks)", m_gridSize);
     ctx.scene.bounds(0.0f, m_lo, m_hi);
@@ -110,6 +109,8 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     const gl::GpuInfo& info = gl::Context::current()->info();
     m_maxLayers = std::max(1, std::min(info.maxArrayLayers, 2048));
     const int r = m_mapResolution;
+    // Bundles per frame at most: photons times stored bounces, or one per VPL of a cube RSM.
+    const int capacity = std::max(1, m_injection == "rsm" ? 6 * m_vplGrid * m_vplGrid : m_photonCount * m_bounces);
     BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "render/scene.vert"},
                                                                          {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
     BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
@@ -122,7 +123,7 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     maps.target = GL_TEXTURE_2D_ARRAY;
     maps.format = GL_DEPTH_COMPONENT32F;
     maps.width = maps.height = r;
-    maps.depth = std::min(m_maxLayers, std::max(1, m_photonCount * m_bounces));
+    maps.depth = std::min(m_maxLayers, capacity);
     maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
     m_maps = gl::Texture::create("photon-splat.depthMaps", maps);
     m_accum = gl::Texture::create2D("photon-splat.accumulation", ctx.size.x, ctx.size.y, GL_RGBA32F);
@@ -135,7 +136,7 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     m_accumFbo.setDrawBuffers(2);
     BOUNCE_CHECK(m_accumFbo.complete(), "photon-splat accumulation framebuffer");
     m_outFbo = gl::Framebuffer::create("photon-splat.outFbo");
-    m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(std::max(1, m_photonCount * m_bounces)) * sizeof(gpu::BundleGpu));
+    m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(capacity) * sizeof(gpu::BundleGpu));
     m_caster.reset();
     m_casterTime = -1.0f;
     return {};
@@ -295,18 +296,15 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         auto s = ctx.timers.scope("blur");
         // Horizontal into m_accum (free now), vertical into the output.
         m_blurProgram.set("u_kernel", m_blur);
-        m_outFbo.attach(GL_COLOR_ATTACHMENT0, m_accum);
-        m_outFbo.bind();
-        m_blurTemp.bind(BINDING_TEX_INPUT0);
-        m_blurProgram.set("u_direction", glm::ivec2(1, 0));
-        m_blurProgram.use();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        m_outFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
-        m_outFbo.bind();
-        m_accum.bind(BINDING_TEX_INPUT0);
-        m_blurProgram.set("u_direction", glm::ivec2(0, 1));
-        m_blurProgram.use();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        const std::array<std::pair<const gl::Texture*, const gl::Texture*>, 2> passes = {{{&m_blurTemp, &m_accum}, {&m_accum, &indirect}}};
+        for (size_t pass = 0; pass < passes.size(); ++pass) {
+            m_outFbo.attach(GL_COLOR_ATTACHMENT0, *passes[pass].second);
+            m_outFbo.bind();
+            passes[pass].first->bind(BINDING_TEX_INPUT0);
+            m_blurProgram.set("u_direction", pass == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1));
+            m_blurProgram.use();
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
     }
 }
 
