@@ -7,15 +7,15 @@ The tests assert bounds; the numbers a doc page quotes from them ("measured relM
 the record this writes to bench/results/NAME-<date>.json (command, commit, date, machine, GPU, and
 per test its properties and pass/fail), so each quoted number has its raw record.
 """
-import datetime
 import json
 import os
-import platform
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from record import new_record, write_record  # noqa: E402
 
 
 def main():
@@ -36,23 +36,9 @@ def main():
         for t in suite["testsuite"]:
             props = {k: v for k, v in t.items() if k not in ("name", "status", "result", "timestamp", "time", "classname", "file", "line", "failures")}
             tests[f"{suite['name']}.{t['name']}"] = {"passed": "failures" not in t, "time": t.get("time"), "properties": props}
-    info = subprocess.run([bounce, "info"], capture_output=True, text=True).stdout.splitlines()
-    record = {
-        "benchmark": name,
-        "command": f"bench/test-record.py {name} '{pattern}'",
-        "commit": subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
-        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "machine": f"{platform.node()} {platform.machine()} {os.cpu_count()} cores",
-        "gpu": " ".join(l.split(None, 1)[1] for l in info if l.startswith("renderer")),
-        "exitCode": run.returncode,
-        "tests": tests,
-    }
-    os.makedirs(os.path.join(ROOT, "bench/results"), exist_ok=True)
-    path = os.path.join(ROOT, "bench/results", f"{name}-{record['date'][:10]}.json")
-    with open(path + ".tmp", "w") as f:
-        json.dump(record, f, indent=1)
-    os.replace(path + ".tmp", path)
-    print("wrote", os.path.relpath(path, ROOT), "exit", run.returncode)
+    record = new_record(name, f"bench/test-record.py {name} '{pattern}'", bounce)
+    record.update({"exitCode": run.returncode, "tests": tests})
+    print("wrote", write_record(record), "exit", run.returncode)
     sys.exit(run.returncode)
 
 

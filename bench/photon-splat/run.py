@@ -10,15 +10,15 @@ frames for photon-splat (frame 0 compiles shaders on llvmpipe), the photon map's
 A and B sides interleaved. Writes bench/results/photon-splat-<date>.json; bench/tables.py makes the
 README table.
 """
-import datetime
 import json
 import os
-import platform
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from record import new_record, write_record  # noqa: E402
 SIZE = "128x128"
 
 
@@ -61,17 +61,8 @@ def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     quick = "--quick" in sys.argv
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
-    info = subprocess.run([bounce, "info"], capture_output=True, text=True).stdout.splitlines()
-    record = {
-        "benchmark": "photon-splat",
-        "command": " ".join(["bench/photon-splat/run.py"] + sys.argv[1:]),
-        "commit": subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
-        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "machine": f"{platform.node()} {platform.machine()} {os.cpu_count()} cores",
-        "gpu": " ".join(l.split(None, 1)[1] for l in info if l.startswith("renderer")),
-        "size": SIZE,
-        "results": {},
-    }
+    record = new_record("photon-splat", " ".join(["bench/photon-splat/run.py"] + sys.argv[1:]), bounce)
+    record.update({"size": SIZE, "results": {}})
     reps = 2 if quick else 3
     with tempfile.TemporaryDirectory() as tmp:
         for scene in ["cornell-box", "atrium"] if not quick else ["cornell-box"]:
@@ -119,12 +110,7 @@ def main():
             m1[str(g)] = r["gridBytes"]
         record["results"]["gridBytes"] = m1
         record["results"]["photonBytesPerPhoton"] = 36
-    os.makedirs(os.path.join(ROOT, "bench/results"), exist_ok=True)
-    path = os.path.join(ROOT, "bench/results", f"photon-splat-{record['date'][:10]}.json")
-    with open(path + ".tmp", "w") as f:
-        json.dump(record, f, indent=1)
-    os.replace(path + ".tmp", path)
-    print("wrote", os.path.relpath(path, ROOT))
+    print("wrote", write_record(record))
 
 
 if __name__ == "__main__":

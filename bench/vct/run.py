@@ -10,16 +10,16 @@ bench/results/vct-<date>.json with the command, git commit, date and machine; be
 it into the README's tables. Absolute times on llvmpipe are indicative only; the ratios are the
 results (thesis Table 4.1 and ch. 5-7 claims, docs/techniques/vct.md).
 """
-import datetime
 import json
 import os
-import platform
 import statistics
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from record import new_record, write_record  # noqa: E402
 
 
 def run_record(bounce, scene, settings, size, frames, scene_params=None, component="indirect"):
@@ -71,18 +71,8 @@ def main():
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
     reps = 2 if quick else 3
     frames = 5
-    record = {
-        "benchmark": "vct",
-        "command": " ".join(["bench/vct/run.py"] + sys.argv[1:]),
-        "commit": subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
-        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "machine": f"{platform.node()} {platform.machine()} {os.cpu_count()} cores",
-        "reps": reps,
-        "frames": frames,
-        "results": {},
-    }
-    info = subprocess.run([bounce, "info"], capture_output=True, text=True).stdout.splitlines()
-    record["gpu"] = " ".join(l.split(None, 1)[1] for l in info if l.startswith("renderer"))
+    record = new_record("vct", " ".join(["bench/vct/run.py"] + sys.argv[1:]), bounce)
+    record.update({"reps": reps, "frames": frames, "results": {}})
 
     # R1-R5: voxelizer time over resolution and scene (binary, thin: the Table 4.1 set-up).
     vox = {}
@@ -190,12 +180,7 @@ def main():
     record["results"]["quality"] = quality
     record["results"]["quality_reference"] = "bounce reference --size 128x128 --spp 512 --bounces 1 --indirect-only --frame F"
 
-    os.makedirs(os.path.join(ROOT, "bench/results"), exist_ok=True)
-    path = os.path.join(ROOT, "bench/results", f"vct-{record['date'][:10]}.json")
-    with open(path + ".tmp", "w") as f:
-        json.dump(record, f, indent=1)
-    os.replace(path + ".tmp", path)
-    print("wrote", os.path.relpath(path, ROOT))
+    print("wrote", write_record(record))
 
 
 if __name__ == "__main__":

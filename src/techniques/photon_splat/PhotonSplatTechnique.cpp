@@ -101,8 +101,8 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     }
     if (m_gridSize % 2 != 0) return makeError("setting gridSize={} must be even (the grid is walked in 2x2x2 blocks)", m_gridSize);
     ctx.scene.bounds(0.0f, m_lo, m_hi);
-    m_diagonal = std::max(glm::length(m_hi - m_lo), 1e-3f);
-    const float size = m_mapSize > 0.0f ? m_mapSize : kAutoMapSizeFraction * m_diagonal;
+    const float diagonal = std::max(glm::length(m_hi - m_lo), 1e-3f);
+    const float size = m_mapSize > 0.0f ? m_mapSize : kAutoMapSizeFraction * diagonal;
     m_half = 0.5f * size;
     m_back = m_stepBack > 0.0f ? m_stepBack : kAutoStepBackFraction * m_half;
     m_depth = m_mapDepth > 0.0f ? m_mapDepth : m_back + kAutoDepthFactor * size;

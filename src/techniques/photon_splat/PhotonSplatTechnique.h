@@ -27,7 +27,6 @@ public:
     // For tests: the photons and bundles of the last frame.
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
     const std::vector<photonsplat::Bundle>& bundles() const { return m_bundles; }
-    float halfSize() const { return m_half; }
     // Tests: use these photons every frame instead of shooting them (stratification still applies).
     void setFixedPhotons(std::vector<photonsplat::Photon> photons) { m_fixedPhotons = std::move(photons); }
 
@@ -59,7 +58,7 @@ private:
     int m_blur = 0;
     std::string m_debugView{"none"};
 
-    float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f, m_diagonal = 1.0f;
+    float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f;  // bundle half width h, depth D, step back b (metres)
     glm::vec3 m_lo{0.0f}, m_hi{0.0f};
     int m_maxLayers = 256;
     std::optional<RayCaster> m_caster;

@@ -28,7 +28,6 @@ public:
 
     // For tests and benchmarks: the volumes of the last frame.
     int resolution() const { return m_resolution; }
-    int levels() const { return m_levels; }
     // Level-0 occupancy (x fastest), from the binary volume or the isotropic volume's opacity.
     std::vector<uint8_t> downloadOccupancy() const;
     // Level `level` of the isotropic volume as RGBA8 (x fastest).
@@ -37,7 +36,6 @@ public:
     // floats, 4 per voxel for RGBA formats and 1 for R32F.
     std::vector<float> downloadVolume(int index, int level) const;
     glm::mat4 voxelFromWorld() const { return m_uniforms.voxelFromWorld; }
-    float radianceRange() const { return m_uniforms.range.x; }
     // Bytes per level-0 voxel of the radiance storage alone, and of the opacity volume (R8).
     static double radianceBytesPerVoxel(std::string_view storage);
 
