@@ -59,6 +59,9 @@ TEST_F(TemporalCoherenceGpuTest, NicholsClustersAndTreeAgainstTheVplGrid) {
     // Part of every value is real change (the spot orbits, the tall block turns), which no technique
     // removes, so the ratios cannot approach 0. The bounds keep the measured ordering with its margin:
     // isr at most 0.7x rsm, hisr at most 0.95x rsm (hisr's margin is the thinner one).
+    RecordProperty("rsmFlicker", std::to_string(rsm));
+    RecordProperty("isrClustersFlicker", std::to_string(isr));
+    RecordProperty("hisrFlicker", std::to_string(hisr));
     EXPECT_LT(isr, 0.7 * rsm);
     EXPECT_LT(hisr, 0.95 * rsm);
 }
@@ -76,5 +79,7 @@ TEST_F(TemporalCoherenceGpuTest, IirIncrementalAgainstItsComparisonMode) {
     // VPLs". Measured 0.0389 against 0.1974 (0.20x; 24 frames: 0.0390 against 0.1967). Before VPLs
     // kept their interleaving tile (tiles re-dealt every frame) incremental measured 0.0877 (0.44x).
     // At most half of the comparison mode's flicker.
+    RecordProperty("iirIncrementalFlicker", std::to_string(incremental));
+    RecordProperty("iirComparisonFlicker", std::to_string(comparison));
     EXPECT_LT(incremental, 0.5 * comparison);
 }
