@@ -16,6 +16,16 @@
 #define BINDING_SSBO_TECH1 5
 #define BINDING_SSBO_TECH2 6
 #define BINDING_SSBO_TECH3 7
+// Hemicube radiosity (techniques/radiosity): its eight record arrays (GL 4.5 drivers bounce targets
+// have at least 16 storage-buffer bindings; llvmpipe and NVIDIA expose 32 and 96).
+#define BINDING_SSBO_RAD_QUADS 8
+#define BINDING_SSBO_RAD_ELEMENTS 9
+#define BINDING_SSBO_RAD_TRIANGLES 10
+#define BINDING_SSBO_RAD_BODIES 11
+#define BINDING_SSBO_RAD_BODIES_OLD 12
+#define BINDING_SSBO_RAD_SHOOTERS 13
+#define BINDING_SSBO_RAD_HEMICUBES 14
+#define BINDING_SSBO_RAD_STATS 15
 
 // Texture units
 #define BINDING_TEX_BASECOLOR 0   // sampler2DArray of all base-colour textures

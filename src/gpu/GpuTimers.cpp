@@ -2,6 +2,8 @@
 
 #include "core/Check.h"
 
+#include <algorithm>
+
 namespace bounce::gl {
 
 GLuint GpuTimers::query() {
@@ -55,10 +57,15 @@ std::vector<PassTime> GpuTimers::endFrame() {
     };
     const GLuint64 t0 = read(m_frameBegin);
     out.push_back({"frame", static_cast<double>(read(frameEnd) - t0) * 1e-6});
+    // A scope opened several times in one frame (a pass run per batch) reports its total, at the
+    // place it was first opened.
     for (const Entry& e : m_entries) {
         if (!e.begin || !e.end) continue;
         const GLuint64 b = read(e.begin), en = read(e.end);
-        out.push_back({e.name, static_cast<double>(en >= b ? en - b : 0) * 1e-6});
+        const double ms = static_cast<double>(en >= b ? en - b : 0) * 1e-6;
+        auto same = std::find_if(out.begin() + 1, out.end(), [&](const PassTime& p) { return p.name == e.name; });
+        if (same != out.end()) same->milliseconds += ms;
+        else out.push_back({e.name, ms});
     }
     return out;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Per-pass GPU times from GL_TIMESTAMP queries. A frame is bracketed by beginFrame()/endFrame();
-// passes open named scopes (nesting allowed, shown as "outer/inner"). endFrame() waits for the
+// passes open named scopes (nesting allowed, shown as "outer/inner"; a name opened again in the
+// same frame adds to its total). endFrame() waits for the
 // results, which is what a measuring tool wants; the viewer reads them one frame late instead.
 #include "gpu/Objects.h"
 

@@ -60,6 +60,15 @@ Texture Texture::create(std::string_view name, const TextureDesc& desc) {
         case GL_TEXTURE_3D:
             glTextureStorage3D(id, desc.levels, desc.format, desc.width, desc.height, desc.depth);
             break;
+        case GL_TEXTURE_2D_MULTISAMPLE:
+            glTextureStorage2DMultisample(id, desc.samples, desc.format, desc.width, desc.height, GL_TRUE);
+            label(GL_TEXTURE, id, name);
+            return t;
+        case GL_TEXTURE_2D_MULTISAMPLE_ARRAY:
+            // Multisampled textures have no sampler state: setting filters on them is an error.
+            glTextureStorage3DMultisample(id, desc.samples, desc.format, desc.width, desc.height, desc.depth, GL_TRUE);
+            label(GL_TEXTURE, id, name);
+            return t;
         default: BOUNCE_CHECK(false, "texture '{}': unsupported target 0x{:x}", name, desc.target);
     }
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(desc.minFilter));

@@ -40,6 +40,7 @@ struct TextureDesc {
     int levels = 1;
     GLenum minFilter = GL_LINEAR, magFilter = GL_LINEAR;
     GLenum wrap = GL_CLAMP_TO_EDGE;
+    int samples = 0;  // GL_TEXTURE_2D_MULTISAMPLE(_ARRAY) only: samples per texel (no sampler state)
 };
 
 class Texture {

@@ -34,7 +34,11 @@ View cubeFaceView(glm::vec3 eye, int face, float nearPlane, float farPlane, int 
 SceneDrawer::SceneDrawer(const SceneGpu& scene)
     : m_scene(&scene), m_viewUbo(gl::Buffer::create("scene.view", sizeof(gpu::ViewUniforms))) {}
 
-void SceneDrawer::draw(const View& view, DrawFilter filter) {
+void SceneDrawer::draw(const View& view, DrawFilter filter) { drawWith(view, filter, nullptr); }
+
+void SceneDrawer::draw(const View& view, DrawFilter filter, const gl::Buffer& objects) { drawWith(view, filter, &objects); }
+
+void SceneDrawer::drawWith(const View& view, DrawFilter filter, const gl::Buffer* objects) {
     gpu::ViewUniforms u;
     u.clipFromWorld = view.clipFromWorld();
     u.viewFromWorld = view.viewFromWorld;
@@ -45,7 +49,9 @@ void SceneDrawer::draw(const View& view, DrawFilter filter) {
     m_viewUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_VIEW);
     glViewport(0, 0, view.viewport.x, view.viewport.y);
     m_scene->bindGeometry();
+    if (objects) objects->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
     m_scene->drawIndirect(filter);
+    if (objects) m_scene->objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
     ++m_drawCalls;
 }
 

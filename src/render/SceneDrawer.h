@@ -28,10 +28,15 @@ public:
     // Uploads the view (BINDING_UBO_VIEW), binds the geometry and draws. The caller has bound its
     // program and framebuffer and set depth/cull state.
     void draw(const View& view, DrawFilter filter = DrawFilter::All);
+    // The same with other object transforms bound in place of the scene's (an array of ObjectGpu in
+    // scene order): hemicube radiosity draws the scene as it was before objects moved.
+    void draw(const View& view, DrawFilter filter, const gl::Buffer& objects);
     const SceneGpu& scene() const { return *m_scene; }
     size_t drawCalls() const { return m_drawCalls; }
 
 private:
+    void drawWith(const View& view, DrawFilter filter, const gl::Buffer* objects);
+
     const SceneGpu* m_scene;
     gl::Buffer m_viewUbo;
     size_t m_drawCalls = 0;

@@ -8,6 +8,10 @@
 #include "techniques/multires_splat/MultiresSplatTechnique.h"
 #include "techniques/rsm/RsmTechnique.h"
 #include "techniques/photon_splat/PhotonSplatTechnique.h"
+#include "techniques/radiosity_cross/CrossRadiosityTechnique.h"
+#include "techniques/radiosity_gather/GatherRadiosityTechnique.h"
+#include "techniques/radiosity_incremental/IncrementalRadiosityTechnique.h"
+#include "techniques/radiosity_pr/ProgressiveRadiosityTechnique.h"
 #include "techniques/rsm_splat/RsmSplatTechnique.h"
 #include "techniques/vct/VctTechnique.h"
 
@@ -29,6 +33,14 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
          "Rauwendaal 2013 PhD thesis; Rauwendaal & Bailey, JCGT 2013", [] { return std::make_unique<VctTechnique>(); }},
         {"photon-splat", "photon splatting: CPU-traced photons as orthographic bundles with their own depth maps, splatted and normalised (seed 004)",
          "photon splatting with orthographic bundles (seed 004 thesis)", [] { return std::make_unique<PhotonSplatTechnique>(); }},
+        {"radiosity-gather", "hemicube gather radiosity: a radiosity hemicube per element per bounce, integrated with delta form factors (van de Hoef 2013 Alg. 4.1; the radiosity reference)",
+         "van de Hoef 2013 MSc thesis; Cohen & Greenberg 1985", [] { return std::make_unique<GatherRadiosityTechnique>(); }},
+        {"radiosity-pr", "GPU progressive refinement radiosity: shooter selection and subdivision, ID hemicubes, disk-approximation reconstruction (van de Hoef 2013 Alg. 4.2)",
+         "van de Hoef 2013 MSc thesis; Cohen et al. 1988; Coombe et al. 2004", [] { return std::make_unique<ProgressiveRadiosityTechnique>(); }},
+        {"radiosity-incremental", "incremental radiosity with reshooting: old/new ID hemicubes, negative shots, four visibility cases (van de Hoef 2013 Alg. 4.3)",
+         "van de Hoef 2013 MSc thesis; Chen 1990; George et al. 1990", [] { return std::make_unique<IncrementalRadiosityTechnique>(); }},
+        {"radiosity-cross", "cross redistribution radiosity: four hemicubes per moving patch, cross projection through back hemicubes (van de Hoef 2013 Alg. 4.4/4.5)",
+         "van de Hoef 2013 MSc thesis", [] { return std::make_unique<CrossRadiosityTechnique>(); }},
         {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;

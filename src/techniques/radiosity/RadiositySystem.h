@@ -1,0 +1,131 @@
+#pragma once
+// The GPU machinery the four hemicube radiosity methods of van de Hoef 2013 share: the radiosity
+// atlas (B and Bu, RGBA32F), the element/quad/shooter records, the hemicube renderer (ID, radiosity,
+// combined ID + shot, low-resolution back shot + distance), hemicube integration (compute reduction
+// or the mip-chain fallback), shooter selection and generation, the reconstruction passes and the
+// display. RadiosityTechnique.cpp's essay maps each to the thesis's passes and to GL 4.5.
+#include "core/Error.h"
+#include "gpu/GpuTimers.h"
+#include "gpu/Objects.h"
+#include "gpu/Program.h"
+#include "render/SceneDrawer.h"
+#include "techniques/radiosity/PatchModel.h"
+#include "techniques/radiosity/radiosity_shared.h"
+
+#include <memory>
+#include <vector>
+
+namespace bounce::radiosity {
+
+struct SystemOptions {
+    PatchOptions patches;
+    int hemicubeSize = 64;      // top-face pixels per side (thesis sec. 5.3.1: 64)
+    int backSize = 16;          // back shot hemicubes (sec. 4.5.2: 16)
+    int msaa = 4;               // samples of the radiosity and back hemicubes (sec. 5.3.1: 4)
+    bool mipIntegration = false;
+    int visibilitySamples = 4;  // nearest hemicube pixels tested (sec. 5.2.1: 4)
+    bool randomRotation = true;
+    float ffSubdivideRatio = 0.5f;  // A_s / r^2 above which the disk approximation is split
+    int ffSubdivisions = 4;         // sub-disks per side then
+    int crossGrid = 4;              // PROJECTEDRADIOSITY gridSize (sec. 4.5.2: 4)
+    bool reprojection = true;
+};
+
+// Per-quad sums read back for FINDSHOOTINGQUAD (radiance x area, W/sr per channel).
+struct QuadStats {
+    glm::vec3 unshot{0.0f}, shot{0.0f}, total{0.0f};
+    float area = 0.0f;
+};
+
+// A shooting patch as the CPU chooses it: an element rectangle of one quad.
+struct ShooterRect {
+    uint32_t quad = 0;
+    glm::ivec2 lo{0}, hi{0};  // inclusive element range
+};
+
+enum class HemicubeKind { Id, Radiosity, Combined, Back };
+enum class ShooterAt { Front, Back };
+
+class RadiositySystem {
+public:
+    static Expected<std::unique_ptr<RadiositySystem>> create(const Scene& scene, const SystemOptions& options);
+
+    const PatchModel& patches() const { return m_model; }
+    const SystemOptions& options() const { return m_options; }
+
+    // Body transforms at `time`; a body "moves" when its transform differs from the one of the last
+    // commit() (the previous redistribution).
+    void beginFrame(const Scene& scene, float time);
+    void commit();  // old bodies := current bodies
+    bool anyMoving() const { return m_anyMoving; }
+    bool bodyMoving(uint32_t body) const { return m_moving[body] != 0; }
+    // Bodies that count as M when this is set (cross redistribution's removed set), else movement.
+    void setMovingOverride(const std::vector<char>* moving);
+    size_t movingElementCount() const;
+
+    // Elements: B = Bu = E (or 0) on the selected receivers.
+    void reset(int receivers, bool toEmission);
+    // One gather sweep (Alg. 4.1): a radiosity hemicube per element, integrated, B = E + rho sum.
+    void gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& timers);
+
+    std::vector<QuadStats> quadStats();
+    // Uploads shooters [first, first + n) of the shooter buffer and computes T for them.
+    void loadShooters(const std::vector<ShooterRect>& rects);
+    void computeShooters(uint32_t first, uint32_t count, bool keepShot);
+    void clearShooterUnshot(uint32_t first, uint32_t count);
+    // Hemicube records of shooters [first, first + count) in `role` (0-3), at their front or back,
+    // placed with the old or the current bodies; then rendered (ID into role 0/1 arrays, combined
+    // into role 1 + shot, back into role 2/3 after the MSAA resolve).
+    void placeShooterHemicubes(uint32_t role, uint32_t first, uint32_t count, ShooterAt at, bool old);
+    void renderHemicubes(render::SceneDrawer& drawer, HemicubeKind kind, uint32_t role, uint32_t count, bool old,
+                         render::DrawFilter filter, gl::GpuTimers& timers);
+    // GATHERRADIOSITY (Alg. 4.4): integrate role 1's shot hemicubes, B_s += rho_s sum.
+    void gatherShot(uint32_t count, gl::GpuTimers& timers);
+    // A reconstruction pass over every element with shooters [first, first + count) of the batch.
+    void reconstruct(int mode, int receivers, uint32_t first, uint32_t count, bool insert, gl::GpuTimers& timers);
+    // B as radiance into direct (E) and indirect (B - E) targets of the camera view.
+    void display(render::SceneDrawer& drawer, const render::View& camera, const gl::Texture& direct,
+                 const gl::Texture& indirect, bool nearest);
+
+    // Tests: element radiosity B and Bu read back (one per element, in element order).
+    std::vector<glm::vec3> readTotal() const;
+    std::vector<glm::vec3> readUnshot() const;
+    // Tests: integrate a constant-white radiosity hemicube (delta form factors' sum, ~1).
+    std::vector<float> deltaFormFactorTable() const { return m_deltaTable; }
+    std::vector<glm::vec4> readStats(size_t count) const;
+    uint32_t hemicubesRendered() const { return m_hemicubes; }
+    void resetCounters() { m_hemicubes = 0; }
+    uint32_t maxShooters() const { return m_maxShooters; }
+    float emittedPower() const { return m_emittedPower; }  // sum of A E luminance over emitters
+
+private:
+    void bindCommon() const;
+    std::vector<glm::vec3> readAtlas(const gl::Texture& t) const;
+
+    PatchModel m_model;
+    SystemOptions m_options;
+    float m_far = 100.0f, m_offset = 1e-3f;
+    float m_emittedPower = 0.0f;
+    uint32_t m_maxShooters = 0, m_hemicubes = 0;
+    std::vector<float> m_deltaTable;
+    std::vector<gpu::ObjectGpu> m_objectData;
+    std::vector<gpu::RadBodyGpu> m_bodies, m_bodiesOld;
+    std::vector<char> m_moving;
+    const std::vector<char>* m_movingOverride = nullptr;
+    bool m_anyMoving = false, m_haveOld = false;
+
+    gl::Texture m_total, m_unshot;
+    gl::Buffer m_quads, m_elements, m_triangles, m_bodyBuffer, m_bodyOldBuffer, m_objectsOld, m_shooters,
+        m_records, m_stats, m_pass;
+    gl::Texture m_deltaFF;
+    gl::Texture m_idA, m_idB, m_shot, m_depth, m_radMs, m_depthMs, m_backMs, m_backDepthMs, m_backOld, m_backNew,
+        m_weighted;
+    gl::Framebuffer m_fboIdA, m_fboIdB, m_fboCombined, m_fboRad, m_fboBack, m_fboDisplay;
+    gl::Texture m_displayDepth;
+    glm::ivec2 m_displaySize{0};
+    gl::VertexArray m_emptyVao;
+    gl::Program m_hc[4], m_hcLight[4], m_display[2], m_place, m_quadStats, m_shooterPass, m_clear, m_integrateMs,
+        m_integrateSingle, m_integrateMip, m_resolve, m_ffMultiply, m_reconstruct;
+};
+
+}  // namespace bounce::radiosity

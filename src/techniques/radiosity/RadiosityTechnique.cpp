@@ -1,0 +1,171 @@
+// Hemicube radiosity after M. van de Hoef, "Real-Time Dynamic Radiosity for High Quality Global
+// Illumination", MSc thesis, Utrecht University, 2013 (seed 003). The shared machinery of the four
+// methods; each method's algorithm is in its own folder (radiosity_gather, radiosity_pr,
+// radiosity_incremental, radiosity_cross).
+//
+// Model (sec. 4.1; PatchModel.h): planar quads from the scene's triangle pairs, each with an
+// nu x nv region of one RGBA32F atlas for B and one for the unshot Bu; the outer texel ring lies on
+// the quad's edges; edge/corner elements own half/quarter cells; corner samples are inset. Area
+// lights are emitter quads. Everything is stored as radiance (B / pi, radiosity_shared.h).
+//
+// Passes and their OpenGL 4.5 form (the thesis used Direct3D 11):
+//   hemicube rendering   five projections -> one layered draw per hemicube: a geometry shader with
+//                        invocations = 5 picks the face (gl_Layer), side faces clip v > 1 with
+//                        gl_ClipDistance; ID (R32UI), radiosity (RGBA16F, 4x MSAA), combined
+//                        ID + shot (MRT, no MSAA), back shot + distance (RGBA16F, 4x MSAA, 16^2);
+//                        the scene through SceneDrawer (old transforms: an ObjectGpu array bound in
+//                        place of the scene's), area lights by a vertex-buffer-less draw
+//   MSAA resolve         D3D's ResolveSubresource -> a compute pass averaging the samples (colour
+//                        and distance; GL's blit cannot average a depth buffer); for the gather
+//                        hemicubes the resolve is folded into the integration
+//   integration          compute parallel reduction over the five faces with the precomputed delta
+//                        form factors (an R32F array), or the DX10 fallback: multiply, glGenerate-
+//                        TextureMipmap, read the 1x1 level x R^2 (integration=mipmap, gather only)
+//   FINDSHOOTINGQUAD     the mip chain + 1x1 inverted-depth render target -> a compute reduction per
+//                        quad (area-weighted unshot, shot, total power) read back with
+//                        glGetNamedBufferSubData (the same CPU-GPU stall, once per shooting quad);
+//                        the arg-max of the mean unshot radiance runs on the CPU over |quads| values
+//   T (shooter texture)  a storage buffer of shooter records filled by a compute pass
+//   reconstruction       a compute pass, one thread per element, imageLoad/imageStore on B and Bu
+//                        (the thesis's pixel shader over the element render targets), up to
+//                        RAD_MAX_BATCH shooters per pass (thesis benchmarks: 10)
+//   display              the scene drawn from the camera with B bilinear (or nearest) per quad
+//
+// Deviations and choices (docs/techniques/radiosity.md lists them with their reasons):
+//   - the gather method keeps its elements in RGBA32F like the others (thesis: RGBA16F);
+//   - element pitch, corner inset, shooter subdivision rule, convergence threshold, form-factor
+//     subdivision ratio are not given by the thesis: chosen and named as settings;
+//   - emitters are area lights or emissive materials; point, spot and directional lights are
+//     refused with an error (the thesis has emitting patches only);
+//   - the display splits the solution into direct = E (emitters) and indirect = B - E, so
+//     full = B; the radiosity solution has no separate direct term.
+#include "techniques/radiosity/RadiosityTechnique.h"
+
+#include "core/Image.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace bounce {
+
+using namespace radiosity;
+
+void RadiosityTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given)", 1e-4f, 100.0f);
+    v.field("dynamicElementSize", m_dynamicElementSize, "metres between element centres on animated objects", 1e-4f, 100.0f);
+    v.field("cornerInset", m_options.patches.cornerInset, "corner elements' sample moved inward, texel pitches (thesis: 'a small offset')", 0.0f, 0.5f);
+    v.field("hemicubeSize", m_options.hemicubeSize, "hemicube top-face pixels per side; side faces are half as high (thesis: 64)", 4, 512);
+    v.field("randomRotation", m_options.randomRotation, "rotate each hemicube about its normal by a hash of its position (thesis sec. 4.2)");
+    v.field("visibilitySamples", m_options.visibilitySamples, "ID-hemicube pixels tested per receiver: 4 nearest (thesis sec. 5.2.1) or 1", 1, 4);
+    v.field("ffSubdivideRatio", m_options.ffSubdivideRatio, "split the disk approximation when shooter area / distance^2 exceeds this (thesis: threshold not given)", 0.0f, 1e6f);
+    v.field("ffSubdivisions", m_options.ffSubdivisions, "sub-disks per side when split", 1, 8);
+    v.field("view", m_view, "display filter of the radiosity textures: bilinear (thesis) or nearest (Fig. 4.1.1 debug view)", kViews);
+    visitMethodSettings(v);
+}
+
+Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
+    if (m_options.visibilitySamples != 1 && m_options.visibilitySamples != 4)
+        return makeError("setting visibilitySamples={}: 1 or 4", m_options.visibilitySamples);
+    if (m_options.hemicubeSize % 2 != 0) return makeError("setting hemicubeSize={}: must be even", m_options.hemicubeSize);
+    if (m_batch < 1 || m_batch > RAD_MAX_BATCH) return makeError("setting batch={}: 1 to {}", m_batch, RAD_MAX_BATCH);
+    m_options.patches.elementSize = m_elementSize;
+    m_options.patches.dynamicElementSize = m_dynamicElementSize;
+    adjustOptions(m_options);
+    auto sys = RadiositySystem::create(ctx.scene, m_options);
+    if (!sys.ok()) return makeError("{}: {}", name(), sys.error().message);
+    m_system = std::move(sys).value();
+    m_maxEmission = 0.0f;
+    for (const Element& e : m_system->patches().elements()) m_maxEmission = std::max(m_maxEmission, luminance(e.emission));
+    return {};
+}
+
+void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    m_frameShooters = m_frameIterations = 0;
+    m_system->resetCounters();
+    {
+        auto s = ctx.timers.scope("radiosity.solve");
+        solve(ctx);
+    }
+    m_frameHemicubes = m_system->hemicubesRendered();
+    {
+        auto s = ctx.timers.scope("radiosity.display");
+        m_system->display(ctx.drawer, ctx.camera, ctx.direct, indirect, m_view == "nearest");
+    }
+    const PatchModel& pm = m_system->patches();
+    ctx.counters["elements"] = static_cast<double>(pm.elements().size());
+    ctx.counters["quads"] = static_cast<double>(pm.quads().size());
+    ctx.counters["hemicubes"] = m_frameHemicubes;
+    ctx.counters["shooters"] = m_frameShooters;
+    ctx.counters["iterations"] = m_frameIterations;
+    ctx.counters["converged"] = m_converged ? 1.0 : 0.0;
+    ctx.counters["movingElements"] = static_cast<double>(m_system->movingElementCount());
+}
+
+std::vector<ShooterRect> RadiosityTechnique::subdivide(uint32_t quad, float flux) const {
+    const Quad& q = m_system->patches().quads()[quad];
+    const float emitted = glm::pi<float>() * m_system->emittedPower();
+    const float perShooter = std::max(m_shooterFlux * emitted, 1e-30f);
+    const int cells = q.nu * q.nv;
+    const int n = std::clamp(static_cast<int>(std::ceil(flux / perShooter)), 1, cells);
+    const int gu = std::clamp(static_cast<int>(std::lround(std::sqrt(double(n) * q.nu / q.nv))), 1, q.nu);
+    const int gv = std::clamp((n + gu - 1) / gu, 1, q.nv);
+    std::vector<ShooterRect> rects;
+    for (int b = 0; b < gv; ++b)
+        for (int a = 0; a < gu; ++a) {
+            ShooterRect r;
+            r.quad = quad;
+            r.lo = {a * q.nu / gu, b * q.nv / gv};
+            r.hi = {(a + 1) * q.nu / gu - 1, (b + 1) * q.nv / gv - 1};
+            rects.push_back(r);
+        }
+    return rects;
+}
+
+void RadiosityTechnique::shootBatches(FrameContext& ctx, uint32_t count, int mode, int receivers, bool removeMoving) {
+    const render::DrawFilter filter = removeMoving ? render::DrawFilter::Static : render::DrawFilter::All;
+    for (uint32_t first = 0; first < count; first += static_cast<uint32_t>(m_batch)) {
+        const uint32_t n = std::min<uint32_t>(static_cast<uint32_t>(m_batch), count - first);
+        m_system->placeShooterHemicubes(1, first, n, ShooterAt::Front, false);
+        m_system->renderHemicubes(ctx.drawer, HemicubeKind::Id, 1, n, false, filter, ctx.timers);
+        m_system->reconstruct(mode, receivers, first, n, false, ctx.timers);
+    }
+    m_frameShooters += count;
+}
+
+void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterations, int minIterations, bool removeMoving) {
+    m_converged = false;
+    const auto& quads = m_system->patches().quads();
+    for (int it = 0; it < maxIterations; ++it) {
+        std::vector<QuadStats> stats;
+        {
+            auto s = ctx.timers.scope("radiosity.select");
+            stats = m_system->quadStats();
+        }
+        // FINDSHOOTINGQUAD: the highest area-weighted mean unshot radiance (luminance).
+        int best = -1;
+        float bestMean = 0.0f;
+        for (size_t q = 0; q < quads.size(); ++q) {
+            if (stats[q].area <= 0.0f || (removeMoving && m_system->bodyMoving(quads[q].body))) continue;
+            const float mean = luminance(stats[q].unshot) / stats[q].area;
+            if (mean > bestMean) {
+                bestMean = mean;
+                best = static_cast<int>(q);
+            }
+        }
+        if (best < 0 || (bestMean < m_threshold * m_maxEmission && it >= minIterations)) {
+            m_converged = true;
+            break;
+        }
+        const auto rects = subdivide(static_cast<uint32_t>(best), glm::pi<float>() * luminance(stats[best].unshot));
+        m_system->loadShooters(rects);
+        const auto n = static_cast<uint32_t>(rects.size());
+        m_system->computeShooters(0, n, false);
+        m_system->clearShooterUnshot(0, n);
+        shootBatches(ctx, n, RAD_SHOOT_UNSHOT, removeMoving ? RAD_RECEIVERS_STATIC : RAD_RECEIVERS_ALL, removeMoving);
+        ++m_frameIterations;
+    }
+}
+
+}  // namespace bounce

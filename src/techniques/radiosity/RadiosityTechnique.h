@@ -1,0 +1,65 @@
+#pragma once
+// The base of the four hemicube radiosity techniques of van de Hoef 2013 (radiosity-gather,
+// radiosity-pr, radiosity-incremental, radiosity-cross): shared settings, the progressive-refinement
+// iteration they all build on, the display, counters. See RadiosityTechnique.cpp for the passes and
+// docs/techniques/radiosity.md for the settings, the D3D 11 -> GL 4.5 mapping and the deviations.
+#include "techniques/Technique.h"
+#include "techniques/radiosity/RadiositySystem.h"
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace bounce {
+
+class RadiosityTechnique : public Technique {
+public:
+    void visitSettings(SettingsVisitor& v) override;
+    Expected<void> setup(const SetupContext& ctx) override;
+    void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    bool ownsDirect() const override { return true; }
+
+    static constexpr std::array<std::string_view, 2> kViews{"bilinear", "nearest"};
+
+    // Tests.
+    radiosity::RadiositySystem& system() { return *m_system; }
+    // Per-frame work of the last frame.
+    uint32_t lastHemicubes() const { return m_frameHemicubes; }
+    uint32_t lastShooters() const { return m_frameShooters; }
+    uint32_t lastIterations() const { return m_frameIterations; }
+    bool lastConverged() const { return m_converged; }
+
+protected:
+    // One frame of the method: update the solution in the system's atlas.
+    virtual void solve(FrameContext& ctx) = 0;
+    // Method-specific settings (after the shared ones).
+    virtual void visitMethodSettings(SettingsVisitor&) {}
+    // Options the method fixes (gather uses no back hemicubes, ...).
+    virtual void adjustOptions(radiosity::SystemOptions&) const {}
+
+    // Alg. 4.2 SHOOTINGITERATION until the brightest quad's mean unshot radiance is below the
+    // threshold or `maxIterations` quads have shot (at least `minIterations`, even if converged).
+    // removeMoving: the moving bodies take no part (cross redistribution's initial solution).
+    void progressiveRefinement(FrameContext& ctx, int maxIterations, int minIterations, bool removeMoving);
+    // GENERATESHOOTINGPATCHES' subdivision: a quad carrying `flux` (W, luminance) is cut into about
+    // flux / (shooterFlux x emitted flux) patches, at most one per element.
+    std::vector<radiosity::ShooterRect> subdivide(uint32_t quad, float flux) const;
+    // Renders the ID hemicubes of shooters [0, n) in batches and runs `mode` on `receivers`.
+    void shootBatches(FrameContext& ctx, uint32_t count, int mode, int receivers, bool removeMoving);
+
+    std::unique_ptr<radiosity::RadiositySystem> m_system;
+    radiosity::SystemOptions m_options;
+    float m_elementSize = 0.05f;
+    float m_dynamicElementSize = 0.05f;
+    float m_threshold = 1e-3f;
+    int m_maxIterations = 400;
+    float m_shooterFlux = 0.01f;
+    int m_batch = 10;
+    std::string m_view{"bilinear"};
+
+    uint32_t m_frameHemicubes = 0, m_frameShooters = 0, m_frameIterations = 0;
+    bool m_converged = false;
+    float m_maxEmission = 0.0f;  // brightest emitter radiance (luminance), W/(m^2 sr)
+};
+
+}  // namespace bounce

@@ -1,0 +1,19 @@
+#pragma once
+// `radiosity-incremental`: van de Hoef 2013 Alg. 4.3, incremental radiosity with reshooting.
+#include "techniques/radiosity_pr/ProgressiveRadiosityTechnique.h"
+
+namespace bounce {
+
+class IncrementalRadiosityTechnique final : public ShootingRadiosityTechnique {
+public:
+    std::string_view name() const override { return "radiosity-incremental"; }
+
+protected:
+    void solve(FrameContext& ctx) override;
+
+private:
+    void redistribute(FrameContext& ctx);
+    bool m_initialised = false;
+};
+
+}  // namespace bounce

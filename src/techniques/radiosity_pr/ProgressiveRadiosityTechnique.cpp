@@ -1,0 +1,29 @@
+// GPU progressive refinement radiosity, van de Hoef 2013 sec. 4.3, Alg. 4.2 (after Cohen et al.
+// 1988 and Coombe et al. 2004, with the thesis's improvements):
+//   SHOOTINGITERATION: FINDSHOOTINGQUAD (the quad of highest mean unshot radiosity; stop below the
+//   convergence threshold), GENERATESHOOTINGPATCHES (dynamic shooter subdivision by the quad's unshot
+//   flux, patches summed into the shooter buffer T), clear the quad's unshot texture, then per batch
+//   of shooters an ID hemicube each and one RECONSTRUCTIONSHADER pass over all elements
+//   (Delta B_e = rho_e B_s^u A_s F_se with the disk approximation and the 4-nearest-pixel quad-ID
+//   visibility test).
+// Like the thesis's benchmarks the solution restarts from B = Bu = E every frame (sec. 5.2), which
+// makes it follow any motion; maxIterations bounds a frame's shooting quads.
+#include "techniques/radiosity_pr/ProgressiveRadiosityTechnique.h"
+
+namespace bounce {
+
+void ShootingRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
+    v.field("threshold", m_threshold, "convergence: stop when the brightest quad's mean unshot radiance is below this fraction of the brightest emitter's (thesis: value not given)", 0.0f, 1.0f);
+    v.field("maxIterations", m_maxIterations, "shooting quads per frame at most (Alg. 4.2 iterations)", 1, 1000000);
+    v.field("shooterFlux", m_shooterFlux, "dynamic shooter subdivision: a patch carries at most about this fraction of the emitted flux (thesis: mapping not given)", 1e-6f, 1.0f);
+    v.field("batch", m_batch, "shooters per reconstruction pass (thesis benchmarks: 10)", 1, RAD_MAX_BATCH);
+}
+
+void ProgressiveRadiosityTechnique::solve(FrameContext& ctx) {
+    m_system->beginFrame(ctx.scene, ctx.time);
+    m_system->reset(RAD_RECEIVERS_ALL, true);
+    progressiveRefinement(ctx, m_maxIterations, 0, false);
+    m_system->commit();
+}
+
+}  // namespace bounce
