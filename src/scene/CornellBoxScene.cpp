@@ -2,6 +2,8 @@
 // "Cornell Box Data", https://www.graphics.cornell.edu/online/box/data.html), converted from
 // millimetres to metres. The data's frame is right-handed with +y up and the camera looking along +z,
 // so it is used as is. See docs/scene.md "cornell-box" for the albedos' source and the lights.
+// cornell-box-rotating is the area-lit room without the blocks, with one white box turning in its centre
+// (van de Hoef 2013's radiosity test scene: one rotating box as the dynamic object).
 #include "scene/BuiltinScenes.h"
 #include "scene/MeshBuilder.h"
 
@@ -32,8 +34,20 @@ constexpr glm::vec3 kGreenAlbedo{0.14f, 0.45f, 0.091f};
 constexpr glm::vec3 kCameraPositionMm{278.0f, 273.0f, -800.0f};
 const float kCameraFov = 2.0f * std::atan(12.5f / 35.0f);
 
+// A rectangle in the ceiling plane (mm): an area light and the ceiling's opening for it.
+struct CeilingRect {
+    float x0, x1, z0, z1;
+    float areaMm2() const { return (x1 - x0) * (z1 - z0); }
+    // The same centre with both sides scaled by `factor`.
+    CeilingRect scaled(float factor) const {
+        const float cx = 0.5f * (x0 + x1), cz = 0.5f * (z0 + z1);
+        const float hx = 0.5f * factor * (x1 - x0), hz = 0.5f * factor * (z1 - z0);
+        return {cx - hx, cx + hx, cz - hz, cz + hz};
+    }
+};
+
 // The data's light rectangle (mm): x 213..343, z 227..332, in the ceiling plane.
-constexpr float kLightX0 = 213.0f, kLightX1 = 343.0f, kLightZ0 = 227.0f, kLightZ1 = 332.0f;
+constexpr CeilingRect kDataLight{213.0f, 343.0f, 227.0f, 332.0f};
 
 // Spot light: 1 cm under the ceiling centre, pointing down. A 60 degree cutoff with cos^8 falloff gives a
 // soft-edged pool (intensity at 30 degrees is cos^8 = 0.32 of the axis value, at 45 degrees 0.06, so the
@@ -53,6 +67,19 @@ constexpr glm::vec3 kAreaRadiance{40.0f};               // W/(m^2 sr)
 constexpr float kLoopSeconds = 4.0f;
 constexpr float kSpotOrbitRadius = 0.12f;  // metres, keeps the pool on the floor
 constexpr int kSpotOrbitKeys = 8;
+
+// cornell-box-rotating (van de Hoef 2013's Cornell scene: a "relatively large ceiling light" and one
+// rotating box). The size is chosen here, not taken from the thesis: light=large doubles the data's
+// rectangle per side (260 mm x 210 mm, 4x the area: clearly larger, yet 148 mm of ceiling remain beside
+// it); light=small is the data's rectangle. Either way the radiance is kAreaRadiance * (data area / light
+// area), so the flux pi L A is cornell-box-area's 1.7 W and the exposure matches it: large
+// 10 W/(m^2 sr), small 40 W/(m^2 sr).
+constexpr float kLargeLightScale = 2.0f;                 // per side, relative to the data's rectangle
+// The box: 0.2 m x 0.2 m footprint, 0.28 m tall, centred on the floor (the room's x, z centre), white.
+// Its half-diagonal (0.141 m) keeps it 0.13 m clear of every wall while it turns.
+constexpr float kRotatingBoxSide = 0.2f;                 // metres
+constexpr float kRotatingBoxHeight = 0.28f;              // metres
+constexpr float kRotatingBoxPeriod = 8.0f;               // seconds per turn (45 degrees per second)
 
 glm::vec3 mm(float x, float y, float z) { return glm::vec3(x, y, z) * kMillimetre; }
 
@@ -97,7 +124,7 @@ Mesh wallMesh(const std::string& name, glm::vec3 a, glm::vec3 b, glm::vec3 c, gl
 
 // The ceiling with the light's rectangle cut out, for the area-lit variant (the real box's light sits
 // in an opening in the ceiling; leaving the ceiling whole would make the emitter coplanar with it).
-Mesh ceilingWithOpening() {
+Mesh ceilingWithOpening(const CeilingRect& light) {
     MeshBuilder mb("ceiling");
     const glm::vec3 down(0.0f, -1.0f, 0.0f);
     const float y = 548.8f;
@@ -105,14 +132,22 @@ Mesh ceilingWithOpening() {
     const auto rect = [&](float ax, float az, float bx, float bz) {
         mb.quad(mm(ax, y, az), mm(bx, y, az), mm(bx, y, bz), mm(ax, y, bz), down);
     };
-    rect(x0, z0, x1, kLightZ0);              // front strip
-    rect(x0, kLightZ1, x1, z1);              // back strip
-    rect(x0, kLightZ0, kLightX0, kLightZ1);  // beside the light, low x
-    rect(kLightX1, kLightZ0, x1, kLightZ1);  // beside the light, high x
+    rect(x0, z0, x1, light.z0);                  // front strip
+    rect(x0, light.z1, x1, z1);                  // back strip
+    rect(x0, light.z0, light.x0, light.z1);      // beside the light, low x
+    rect(light.x1, light.z0, x1, light.z1);      // beside the light, high x
     return mb.take();
 }
 
-Scene cornellBox(Lighting lighting, const std::string& name) {
+struct CornellOptions {
+    Lighting lighting = Lighting::Spot;
+    CeilingRect areaLight = kDataLight;          // Area: the light's rectangle and the ceiling's opening
+    glm::vec3 areaRadiance = kAreaRadiance;      // Area: W/(m^2 sr)
+    bool blocks = true;                          // the data's short and tall blocks
+};
+
+Scene cornellBox(const std::string& name, const CornellOptions& options) {
+    const Lighting lighting = options.lighting;
     Scene s;
     s.name = name;
     s.source = "builtin:" + name;
@@ -144,7 +179,7 @@ Scene cornellBox(Lighting lighting, const std::string& name) {
     object(wallMesh("floor", {552.8f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 559.2f}, {549.6f, 0.0f, 559.2f}),
            white);
     if (lighting == Lighting::Area) {
-        object(ceilingWithOpening(), white);
+        object(ceilingWithOpening(options.areaLight), white);
     } else {
         object(wallMesh("ceiling", {556.0f, 548.8f, 0.0f}, {556.0f, 548.8f, 559.2f}, {0.0f, 548.8f, 559.2f},
                         {0.0f, 548.8f, 0.0f}),
@@ -159,18 +194,21 @@ Scene cornellBox(Lighting lighting, const std::string& name) {
            red);
     object(wallMesh("right", {0.0f, 0.0f, 559.2f}, {0.0f, 0.0f, 0.0f}, {0.0f, 548.8f, 0.0f}, {0.0f, 548.8f, 559.2f}),
            green);
-    object(blockMesh("short-block", kShortBlock), white, blockCentre(kShortBlock));
-    object(blockMesh("tall-block", kTallBlock), white, blockCentre(kTallBlock));
+    if (options.blocks) {
+        object(blockMesh("short-block", kShortBlock), white, blockCentre(kShortBlock));
+        object(blockMesh("tall-block", kTallBlock), white, blockCentre(kTallBlock));
+    }
 
     Light light;
     if (lighting == Lighting::Area) {
         light.name = "ceiling-light";
         light.type = LightType::Area;
-        light.position = mm(0.5f * (kLightX0 + kLightX1), 548.8f, 0.5f * (kLightZ0 + kLightZ1));
+        const CeilingRect& r = options.areaLight;
+        light.position = mm(0.5f * (r.x0 + r.x1), 548.8f, 0.5f * (r.z0 + r.z1));
         // cross(+x, +z) = -y: the light emits downward.
-        light.edgeU = mm(kLightX1 - kLightX0, 0.0f, 0.0f);
-        light.edgeV = mm(0.0f, 0.0f, kLightZ1 - kLightZ0);
-        light.radiance = kAreaRadiance;
+        light.edgeU = mm(r.x1 - r.x0, 0.0f, 0.0f);
+        light.edgeV = mm(0.0f, 0.0f, r.z1 - r.z0);
+        light.radiance = options.areaRadiance;
     } else {
         light.name = "spot";
         light.type = LightType::Spot;
@@ -193,12 +231,41 @@ Scene cornellBox(Lighting lighting, const std::string& name) {
 
 }  // namespace
 
-Expected<Scene> buildCornellBox(const SceneParams&) { return cornellBox(Lighting::Spot, "cornell-box"); }
+Expected<Scene> buildCornellBox(const SceneParams&) { return cornellBox("cornell-box", {}); }
 
-Expected<Scene> buildCornellBoxArea(const SceneParams&) { return cornellBox(Lighting::Area, "cornell-box-area"); }
+Expected<Scene> buildCornellBoxArea(const SceneParams&) {
+    CornellOptions options;
+    options.lighting = Lighting::Area;
+    return cornellBox("cornell-box-area", options);
+}
+
+Expected<Scene> buildCornellBoxRotating(const SceneParams& params) {
+    const char* name = "cornell-box-rotating";
+    BOUNCE_TRY(const std::string size, choiceParam(params, name, "light", "large", {"large", "small"}));
+    CornellOptions options;
+    options.lighting = Lighting::Area;
+    options.blocks = false;
+    options.areaLight = size == "large" ? kDataLight.scaled(kLargeLightScale) : kDataLight;
+    options.areaRadiance = kAreaRadiance * (kDataLight.areaMm2() / options.areaLight.areaMm2());
+    Scene s = cornellBox(name, options);
+
+    // The box's mesh is centred on its vertical axis; its track places it on the floor's centre and turns it.
+    MeshBuilder mb("rotating-box");
+    const float h = 0.5f * kRotatingBoxSide;
+    mb.axisBox(glm::vec3(-h, 0.0f, -h), glm::vec3(h, kRotatingBoxHeight, h), /*outward=*/true);
+    Object box;
+    box.name = "rotating-box";
+    box.mesh = static_cast<uint32_t>(s.meshes.size());
+    for (uint32_t m = 0; m < s.materials.size(); ++m)
+        if (s.materials[m].name == "white") box.material = m;
+    box.animation = turntable(mm(kRoomCentreMm.x, 0.0f, kRoomCentreMm.z), kRotatingBoxPeriod);
+    s.meshes.push_back(mb.take());
+    s.objects.push_back(std::move(box));
+    return s;
+}
 
 Expected<Scene> buildCornellBoxDynamic(const SceneParams&) {
-    Scene s = cornellBox(Lighting::Spot, "cornell-box-dynamic");
+    Scene s = cornellBox("cornell-box-dynamic", {});
 
     // The spot's track offsets its position around a horizontal circle; Catmull-Rom through evenly spaced
     // keys on the circle gives a smooth closed orbit (the last key repeats the first to close the loop).
@@ -213,21 +280,12 @@ Expected<Scene> buildCornellBoxDynamic(const SceneParams&) {
         spot.animation.keys.push_back(key);
     }
 
-    // The tall block turns once about its vertical axis per loop, in quarter-turn keys (slerp needs
-    // keys less than half a turn apart to go the intended way round).
+    // The tall block turns once about its vertical axis per loop, in quarter-turn keys.
     for (Object& o : s.objects) {
         if (o.name != "tall-block") continue;
         const glm::vec3 centre = glm::vec3(o.transform[3]);
         o.transform = glm::mat4(1.0f);
-        o.animation.interpolation = Interpolation::Linear;
-        o.animation.loop = true;
-        for (int k = 0; k <= 4; ++k) {
-            TransformKey key;
-            key.time = kLoopSeconds * static_cast<float>(k) / 4.0f;
-            key.translation = centre;
-            key.rotation = glm::angleAxis(glm::half_pi<float>() * static_cast<float>(k), glm::vec3(0.0f, 1.0f, 0.0f));
-            o.animation.keys.push_back(key);
-        }
+        o.animation = turntable(centre, kLoopSeconds);
     }
     return s;
 }

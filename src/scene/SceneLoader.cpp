@@ -30,6 +30,12 @@ const std::vector<BuiltinEntry>& registry() {
           "Cornell box with the spot light orbiting (Catmull-Rom loop) and the tall block turning; 4 s loop",
           {}},
          buildCornellBoxDynamic},
+        {{"cornell-box-rotating",
+          "Cornell box (area light, no blocks) with one white box turning in its centre, 8 s per turn; van de "
+          "Hoef 2013's radiosity scene",
+          {{"light", "large: ceiling light, large (the data's rectangle doubled per side) or small (the data's "
+                     "rectangle); both emit the same flux"}}},
+         buildCornellBoxRotating},
         {{"furnace",
           "Closed 2 m cube, every surface of albedo rho emitting Le, no lights: radiance is Le/(1-rho) everywhere",
           {{"albedo", "0.5: albedo rho of every surface, in [0, 1]"},
@@ -45,6 +51,12 @@ const std::vector<BuiltinEntry>& registry() {
           "Sponza-class stand-in",
           {{"triangles", "100000: triangle budget; the tessellation lands within 10 %"}}},
          buildAtrium},
+        {{"indirect-light",
+          "Closed 4 m x 2.6 m x 4 m room, albedo 0.9 everywhere, lit only by a daylight window (area light) on "
+          "the right that the camera does not see; a 0.5 m box turning on the floor, 8 s per turn; van de Hoef "
+          "2013's radiosity scene",
+          {}},
+         buildIndirectLight},
     };
     return entries;
 }
