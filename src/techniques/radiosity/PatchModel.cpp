@@ -314,11 +314,11 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
                 a *= double(s1 - s0) * double(t1 - t0) / (kAreaSamples * kAreaSamples);
                 el.area = static_cast<float>(a);
                 sum += a;
-                const bool corner = (i == 0 || i == q.nu - 1) && (j == 0 || j == q.nv - 1);
-                if (corner) {
-                    st.x += (i == 0 ? 1.0f : -1.0f) * opt.cornerInset * ds;
-                    st.y += (j == 0 ? 1.0f : -1.0f) * opt.cornerInset * dt;
-                }
+                // Border samples move inward, perpendicular to their edge (corners along both).
+                if (i == 0) st.x += opt.borderInset * ds;
+                if (i == q.nu - 1) st.x -= opt.borderInset * ds;
+                if (j == 0) st.y += opt.borderInset * dt;
+                if (j == q.nv - 1) st.y -= opt.borderInset * dt;
                 if (q.map == QuadMap::Triangle && st.x + st.y > 1.0f) st -= glm::vec2(0.5f * (st.x + st.y - 1.0f));
                 el.position = pointAt(q, st);
             }

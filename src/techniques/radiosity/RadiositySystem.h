@@ -25,8 +25,8 @@ struct SystemOptions {
     bool mipIntegration = false;
     int visibilitySamples = 4;  // nearest hemicube pixels tested (sec. 5.2.1: 4)
     bool randomRotation = true;
-    float ffSubdivideRatio = 0.5f;  // A_s / r^2 above which the disk approximation is split
-    int ffSubdivisions = 4;         // sub-disks per side then
+    float ffSubdivideRatio = 0.05f;  // A_s / r^2 above which the disk approximation is split
+    int ffSubdivisions = 8;          // sub-disks per side then
     int crossGrid = 4;              // PROJECTEDRADIOSITY gridSize (sec. 4.5.2: 4)
     bool reprojection = true;
 };

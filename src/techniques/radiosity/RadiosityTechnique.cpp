@@ -5,7 +5,7 @@
 //
 // Model (sec. 4.1; PatchModel.h): planar quads from the scene's triangle pairs, each with an
 // nu x nv region of one RGBA32F atlas for B and one for the unshot Bu; the outer texel ring lies on
-// the quad's edges; edge/corner elements own half/quarter cells; corner samples are inset. Area
+// the quad's edges; edge/corner elements own half/quarter cells; border samples are inset. Area
 // lights are emitter quads. Everything is stored as radiance (B / pi, radiosity_shared.h).
 //
 // Passes and their OpenGL 4.5 form (the thesis used Direct3D 11):
@@ -33,7 +33,8 @@
 //
 // Deviations and choices (docs/techniques/radiosity.md lists them with their reasons):
 //   - the gather method keeps its elements in RGBA32F like the others (thesis: RGBA16F);
-//   - element pitch, corner inset, shooter subdivision rule, convergence threshold, form-factor
+//   - every border sample inset, not only the corners (PatchModel.h says why);
+//   - element pitch, border inset, shooter subdivision rule, convergence threshold, form-factor
 //     subdivision ratio are not given by the thesis: chosen and named as settings;
 //   - emitters are area lights or emissive materials; point, spot and directional lights are
 //     refused with an error (the thesis has emitting patches only);
@@ -55,7 +56,7 @@ using namespace radiosity;
 void RadiosityTechnique::visitSettings(SettingsVisitor& v) {
     v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given)", 1e-4f, 100.0f);
     v.field("dynamicElementSize", m_dynamicElementSize, "metres between element centres on animated objects", 1e-4f, 100.0f);
-    v.field("cornerInset", m_options.patches.cornerInset, "corner elements' sample moved inward, texel pitches (thesis: 'a small offset')", 0.0f, 0.5f);
+    v.field("borderInset", m_options.patches.borderInset, "border elements' sample moved inward, texel pitches (thesis: corners only, 'a small offset'; docs say why all borders)", 0.0f, 0.5f);
     v.field("hemicubeSize", m_options.hemicubeSize, "hemicube top-face pixels per side; side faces are half as high (thesis: 64)", 4, 512);
     v.field("randomRotation", m_options.randomRotation, "rotate each hemicube about its normal by a hash of its position (thesis sec. 4.2)");
     v.field("visibilitySamples", m_options.visibilitySamples, "ID-hemicube pixels tested per receiver: 4 nearest (thesis sec. 5.2.1) or 1", 1, 4);

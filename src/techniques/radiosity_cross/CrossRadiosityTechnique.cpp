@@ -25,6 +25,13 @@ namespace bounce {
 
 using namespace radiosity;
 
+namespace {
+// The back hemicubes hold P(C, j, i) of Eq. 3.3.2, a sum over static patches only: the moving
+// object is not drawn into them (drawn, a closed object's own far side fills every back hemicube
+// and hides the static light behind it; measured: the shadow of the rotating box 10 % too bright).
+constexpr render::DrawFilter kBackFilter = render::DrawFilter::Static;
+}  // namespace
+
 void CrossRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
     ShootingRadiosityTechnique::visitMethodSettings(v);
     v.field("backHemicubeSize", m_backSize, "back shot hemicubes' top face, pixels per side (thesis sec. 4.5.2: 16)", 2, 256);
@@ -84,12 +91,12 @@ void CrossRadiosityTechnique::redistribute(FrameContext& ctx, bool insert) {
             m_system->placeShooterHemicubes(0, first, n, ShooterAt::Front, true);
             m_system->renderHemicubes(ctx.drawer, HemicubeKind::Id, 0, n, true, render::DrawFilter::All, ctx.timers);
             m_system->placeShooterHemicubes(2, first, n, ShooterAt::Back, true);
-            m_system->renderHemicubes(ctx.drawer, HemicubeKind::Back, 2, n, true, render::DrawFilter::All, ctx.timers);
+            m_system->renderHemicubes(ctx.drawer, HemicubeKind::Back, 2, n, true, kBackFilter, ctx.timers);
         }
         m_system->placeShooterHemicubes(1, first, n, ShooterAt::Front, false);
         m_system->renderHemicubes(ctx.drawer, HemicubeKind::Combined, 1, n, false, render::DrawFilter::All, ctx.timers);
         m_system->placeShooterHemicubes(3, first, n, ShooterAt::Back, false);
-        m_system->renderHemicubes(ctx.drawer, HemicubeKind::Back, 3, n, false, render::DrawFilter::All, ctx.timers);
+        m_system->renderHemicubes(ctx.drawer, HemicubeKind::Back, 3, n, false, kBackFilter, ctx.timers);
         m_system->gatherShot(n, ctx.timers);
         m_system->computeShooters(first, n, true);
         m_system->clearShooterUnshot(first, n);
