@@ -10,6 +10,7 @@
 #include "techniques/Registry.h"
 #include "techniques/radiosity/RadiosityTechnique.h"
 #include "techniques/radiosity_cross/CrossRadiosityTechnique.h"
+#include "scene/MeshBuilder.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -87,56 +88,353 @@ TEST_F(RadiosityGpuTest, FurnaceConvergesToEmissionOverOneMinusAlbedo) {
         const double fixedPoint = b.g + 0.5 / 0.5 * bu.g;
         RecordProperty(std::string(method) + "_B", std::to_string(b.g));
         RecordProperty(std::string(method) + "_fixedPoint", std::to_string(fixedPoint));
-        // 12 Gauss-Seidel sweeps leave at most 0.5^12 of the first bounce: 5e-4. Hemicube aliasing of
-        // the 32^2 delta form factors and the disk approximation's per-patch error: 2 %.
-        EXPECT_NEAR(fixedPoint, expected, 0.02 * expected);
-        if (std::string(method) == "radiosity-gather") EXPECT_NEAR(b.g, expected, 0.02 * expected);
-        // Converged to the threshold: at most threshold x E unshot per quad (the mean is lower).
-        else EXPECT_NEAR(b.g, expected, 0.05 * expected);
+        if (std::string(method) == "radiosity-gather") {
+            // 12 Gauss-Seidel sweeps leave at most 0.5^12 = 2e-4 of the solution; the 32^2 delta form
+            // factors sum to 1.0005 (measured). 0.5 % covers both.
+            EXPECT_NEAR(b.g, expected, 0.005 * expected);
+        } else {
+            // The disk approximation with 8 x 8 sub-disks still loses about 0.4 % of a shot near the
+            // shooter (measured 1.991 with threshold 0.002); 1.5 % leaves room for the 0.01 threshold's
+            // uneven remainder. B itself is short by at most threshold / (1 - rho) x E of unshot light.
+            EXPECT_NEAR(fixedPoint, expected, 0.015 * expected);
+            EXPECT_NEAR(b.g, expected, 0.035 * expected);
+        }
+        // The display shows the solution: every pixel sees a furnace wall (bilinear between elements of
+        // nearly equal B, 1 % for the texels nearest the corners).
         const Image full = p->readback(Component::Full);
         double mean = totalRadiance(full) / (3.0 * full.width() * full.height());
-        EXPECT_NEAR(mean, b.g, 0.03 * expected) << "display of the solution";
+        EXPECT_NEAR(mean, b.g, 0.01 * expected) << "display of the solution";
     }
 }
 
-TEST_F(RadiosityGpuTest, DebugCornell) {
-    const char* sceneName = std::getenv("RAD_SCENE") ? std::getenv("RAD_SCENE") : "cornell-box-rotating";
-    const Scene scene = builtin(sceneName);
+namespace {
+
+// Two parallel, coaxial squares `gap` apart: `small` (side a) at y = 0 facing up, `large` (side b)
+// at y = gap facing down; `emitting` chooses which one emits E = 1 (albedo 0), the other has albedo 1.
+Scene facingSquares(float a, float b, float gap, bool smallEmits) {
+    Scene s;
+    s.name = "facing-squares";
+    Material emitter, receiver;
+    emitter.name = "emitter";
+    emitter.baseColor = glm::vec3(0.0f);
+    emitter.emission = glm::vec3(1.0f);
+    receiver.name = "receiver";
+    receiver.baseColor = glm::vec3(1.0f);
+    s.materials = {emitter, receiver};
+    const auto square = [&](const char* name, float side, float y, glm::vec3 front, uint32_t mat) {
+        MeshBuilder mb(name);
+        const float h = 0.5f * side;
+        mb.quad({-h, y, -h}, {h, y, -h}, {h, y, h}, {-h, y, h}, front);
+        Object o;
+        o.name = name;
+        o.mesh = static_cast<uint32_t>(s.meshes.size());
+        o.material = mat;
+        s.meshes.push_back(mb.take());
+        s.objects.push_back(o);
+    };
+    square("small", a, 0.0f, {0, 1, 0}, smallEmits ? 0u : 1u);
+    square("large", b, gap, {0, -1, 0}, smallEmits ? 1u : 0u);
+    s.camera.position = {0.0f, 0.5f * gap, 2.0f};
+    s.camera.target = {0.0f, 0.5f * gap, 0.0f};
+    return s;
+}
+
+// F from square (side a) to the parallel coaxial square (side b) at `gap`, by midpoint quadrature
+// of Eq. 2.2.1 (n x n points on each).
+double squareToSquareFormFactor(double a, double b, double gap, int n) {
+    const double pi = glm::pi<double>();
+    double sum = 0.0;
+    for (int i = 0; i < n * n; ++i) {
+        const double x0 = (-0.5 + (i % n + 0.5) / n) * a, z0 = (-0.5 + (i / n + 0.5) / n) * a;
+        for (int j = 0; j < n * n; ++j) {
+            const double x1 = (-0.5 + (j % n + 0.5) / n) * b, z1 = (-0.5 + (j / n + 0.5) / n) * b;
+            const double r2 = (x1 - x0) * (x1 - x0) + (z1 - z0) * (z1 - z0) + gap * gap;
+            sum += gap * gap / (pi * r2 * r2);  // cos cos / (pi r^2), both cosines gap / r
+        }
+    }
+    return sum * (b * b) / (double(n) * n * n * n);  // (1/A_a) int int dA_b dA_a
+}
+
+// Area-weighted mean B over the quads of object `object`.
+double meanOfObject(RadiosityTechnique& t, uint32_t object) {
+    const auto& pm = t.system().patches();
+    const auto b = t.system().readTotal();
+    double sum = 0.0, area = 0.0;
+    for (size_t k = 0; k < b.size(); ++k) {
+        const radiosity::Element& e = pm.elements()[k];
+        if (pm.quads()[e.quad].body != object) continue;
+        sum += double(b[k].g) * e.area;
+        area += e.area;
+    }
+    return sum / area;
+}
+
+}  // namespace
+
+TEST_F(RadiosityGpuTest, ShotAndGatheredFormFactorsAreReciprocalAndExact) {
+    // One shot from the emitting square gives the other rho F E (rho = 1, E = 1) as its mean B; the
+    // swapped scene gives the reverse form factor. A_a F_ab = A_b F_ba (reciprocity), and both match
+    // the quadrature of Eq. 2.2.1. The gather method's single sweep measures the same F with the
+    // hemicube instead of the disk approximation.
+    constexpr float kSmall = 0.2f, kLarge = 0.6f, kGap = 0.3f;  // metres
+    const double fSmallToLarge = squareToSquareFormFactor(kSmall, kLarge, kGap, 24);
+    const double fLargeToSmall = fSmallToLarge * (kSmall * kSmall) / (kLarge * kLarge);
+    for (const char* method : {"radiosity-pr", "radiosity-gather"}) {
+        SCOPED_TRACE(method);
+        std::map<std::string, std::string> settings = {{"elementSize", "0.02"}};
+        if (std::string(method) == "radiosity-pr") settings["maxIterations"] = "1";
+        else settings["bounces"] = "1";
+        const Scene smallEmits = facingSquares(kSmall, kLarge, kGap, true);  // the pipeline keeps a reference
+        const Scene largeEmits = facingSquares(kSmall, kLarge, kGap, false);
+        auto p1 = makePipeline(smallEmits, method, settings, 16);
+        p1->renderFrame(0);
+        const double largeFromSmall = meanOfObject(radiosityOf(*p1), 1);  // = F(large -> small)
+        auto p2 = makePipeline(largeEmits, method, settings, 16);
+        p2->renderFrame(0);
+        const double smallFromLarge = meanOfObject(radiosityOf(*p2), 0);  // = F(small -> large)
+        RecordProperty(std::string(method) + "_F_small_large", std::to_string(smallFromLarge));
+        RecordProperty(std::string(method) + "_F_large_small", std::to_string(largeFromSmall));
+        RecordProperty("quadrature_F_small_large", std::to_string(fSmallToLarge));
+        // 2 %: the disk approximation with sub-disks and the 64^2 hemicube's pixel quantisation of a
+        // square seen at up to 60 degrees; the quadrature itself is good to 1e-4.
+        EXPECT_NEAR(smallFromLarge, fSmallToLarge, 0.02 * fSmallToLarge);
+        EXPECT_NEAR(largeFromSmall, fLargeToSmall, 0.02 * fLargeToSmall);
+        EXPECT_NEAR(kSmall * kSmall * smallFromLarge, kLarge * kLarge * largeFromSmall, 0.03 * kSmall * kSmall * smallFromLarge);
+    }
+}
+
+TEST_F(RadiosityGpuTest, AgreesWithThePathTracerAndWithGather) {
+    // The rotating-box Cornell box at frame 12 (the box turned 18 degrees), after frames 0 and 6 so the
+    // incremental methods have redistributed twice. Reference: the path tracer with every bounce,
+    // Lambert only. Pixels that show the light are left out (they are exact in both).
+    const Scene scene = builtin("cornell-box-rotating");
     constexpr int kSize = 64;
-    const uint32_t frames[] = {0, 6, 12};
-    std::map<uint32_t, Image> refs;
-    for (uint32_t f : frames) refs[f] = pathTraced(scene, kSize, f, 256);
+    const Image ref = pathTraced(scene, kSize, 12, 256);
+    std::map<std::string, Image> images;
     for (const char* method : kMethods) {
+        SCOPED_TRACE(method);
         auto p = makePipeline(scene, method, {{"elementSize", "0.05"}}, kSize);
-        for (uint32_t f : frames) {
+        if (std::string(method) != "radiosity-gather")
+            for (uint32_t f : {0u, 6u}) p->renderFrame(f);
+        p->renderFrame(12);
+        const Image full = p->readback(Component::Full), direct = p->readback(Component::Direct);
+        auto [a, b] = receiversOnly(full, direct, ref);
+        images[method] = a;
+        auto m = compareImages(a, b);
+        ASSERT_TRUE(m.ok());
+        const double ratio = totalRadiance(a) / totalRadiance(b);
+        RecordProperty(std::string(method) + "_relMse", std::to_string(m->relMse));
+        RecordProperty(std::string(method) + "_ratio", std::to_string(ratio));
+        // Measured: gather 0.020 / 0.969, pr 0.022 / 0.955, incremental 0.021 / 0.944, cross 0.039 /
+        // 0.977. The path tracer's 256 spp noise alone is relMSE ~0.01; the radiosity methods lose a few
+        // per cent to the disk approximation and the threshold (the thesis's PR is darker too).
+        EXPECT_LT(m->relMse, std::string(method) == "radiosity-cross" ? 0.06 : 0.035);
+        EXPECT_GT(ratio, 0.92);
+        EXPECT_LT(ratio, 1.02);
+    }
+    // Theory (sec. 5.2.1): PR and incremental give the same solution in the Cornell scenes.
+    auto incVsPr = compareImages(images["radiosity-incremental"], images["radiosity-pr"]);
+    auto crossVsGather = compareImages(images["radiosity-cross"], images["radiosity-gather"]);
+    RecordProperty("incremental_vs_pr_relMse", std::to_string(incVsPr->relMse));
+    RecordProperty("cross_vs_gather_relMse", std::to_string(crossVsGather->relMse));
+    EXPECT_LT(incVsPr->relMse, 0.01);
+    EXPECT_LT(crossVsGather->relMse, 0.05);
+}
+
+TEST_F(RadiosityGpuTest, CrossRendersFourHemicubesPerMovingPatchWhateverTheStaticCount) {
+    // The thesis's central claim (sec. 3.3): a cross redistribution renders 4 |M| hemicubes, |M| the
+    // moving patches, independent of the static elements. Two static resolutions, 4x apart in count.
+    const Scene scene = builtin("cornell-box-rotating");
+    std::vector<uint32_t> hemicubes;
+    std::vector<size_t> statics;
+    for (const char* size : {"0.1", "0.05"}) {
+        auto p = makePipeline(scene, "radiosity-cross", {{"elementSize", size}, {"maxIterations", "60"}}, 32);
+        auto& t = dynamic_cast<CrossRadiosityTechnique&>(p->technique());
+        p->renderFrame(0);
+        for (uint32_t f : {1u, 2u}) {
             p->renderFrame(f);
-            const Image full = p->readback(Component::Full), direct = p->readback(Component::Direct);
-            auto [a, b] = receiversOnly(full, direct, refs[f]);
-            auto m = compareImages(a, b);
-            printf("%-22s frame %2u relMSE %.4f ratio %.4f hemicubes %u it %u conv %d\n", method, f, m->relMse, totalRadiance(a) / totalRadiance(b),
-                   radiosityOf(*p).lastHemicubes(), radiosityOf(*p).lastIterations(), int(radiosityOf(*p).lastConverged()));
+            EXPECT_GT(t.lastPatches(), 0u);
+            EXPECT_EQ(t.lastHemicubes(), 4u * t.lastPatches()) << "frame " << f;
+            EXPECT_EQ(t.lastIterations(), 0u) << "no progressive refinement after the insertion";
+        }
+        hemicubes.push_back(t.lastHemicubes());
+        statics.push_back(t.system().patches().elements().size() - t.system().movingElementCount());
+    }
+    RecordProperty("staticElements", std::to_string(statics[0]) + " " + std::to_string(statics[1]));
+    RecordProperty("hemicubesPerFrame", std::to_string(hemicubes[0]) + " " + std::to_string(hemicubes[1]));
+    EXPECT_GT(double(statics[1]), 3.0 * double(statics[0]));
+    EXPECT_EQ(hemicubes[0], hemicubes[1]);
+}
+
+TEST_F(RadiosityGpuTest, AConvergedStillSceneRendersNoHemicube) {
+    // With nothing moving, incremental and cross redistribution keep their solution: no hemicube,
+    // the same image. Gather and PR restart every frame (sec. 5.2) and render them again.
+    const Scene scene = builtin("cornell-box-area");
+    for (const char* method : kMethods) {
+        SCOPED_TRACE(method);
+        std::map<std::string, std::string> settings = {{"elementSize", "0.1"}};
+        if (std::string(method) == "radiosity-gather") settings["bounces"] = "2";
+        auto p = makePipeline(scene, method, settings, 32);
+        auto& t = radiosityOf(*p);
+        p->renderFrame(0);
+        EXPECT_GT(t.lastHemicubes(), 0u);
+        const Image first = p->readback(Component::Full);
+        p->renderFrame(1);
+        p->renderFrame(2);
+        const bool keeps = std::string(method) == "radiosity-incremental" || std::string(method) == "radiosity-cross";
+        if (keeps) {
+            EXPECT_EQ(t.lastHemicubes(), 0u);
+            auto m = compareImages(p->readback(Component::Full), first);
+            EXPECT_EQ(m->mse, 0.0);
+        } else {
+            EXPECT_GT(t.lastHemicubes(), 0u);
         }
     }
 }
 
-TEST_F(RadiosityGpuTest, DebugFurnace) {
-    const Scene scene = builtin("furnace", {{"albedo", "0.5"}});
-    std::vector<std::map<std::string, std::string>> variants = {
-        {{"ffSubdivideRatio", "0.1"}, {"ffSubdivisions", "4"}}, {{"ffSubdivideRatio", "0.05"}, {"ffSubdivisions", "4"}}, {{"ffSubdivideRatio", "0.02"}, {"ffSubdivisions", "4"}},
-        {{"ffSubdivideRatio", "0.1"}, {"ffSubdivisions", "6"}},{{"ffSubdivideRatio", "0.05"}, {"ffSubdivisions", "8"}}, {{"ffSubdivideRatio", "0.05"}, {"ffSubdivisions", "6"}, {"elementSize", "0.1"}}};
-    for (auto v : variants) {
-        auto set = v;
-        if (!set.count("elementSize")) set["elementSize"] = "0.25";
-        set["threshold"] = "0.002";
-        set["maxIterations"] = "3000";
-        auto p = makePipeline(scene, "radiosity-pr", set, 32);
-        p->renderFrame(0);
-        auto& t = radiosityOf(*p);
-        const auto& pm = t.system().patches();
-        const glm::dvec3 b = meanOverReceivers(pm, t.system().readTotal());
-        const glm::dvec3 bu = meanOverReceivers(pm, t.system().readUnshot());
-        std::string name;
-        for (auto& kv : v) name += kv.first + "=" + kv.second + " ";
-        printf("%-40s B %.4f Bu %.5f fixed %.4f it %u\n", name.c_str(), b.g, bu.g, b.g + bu.g, t.lastIterations());
+TEST_F(RadiosityGpuTest, RefusesScenesItCannotShade) {
+    for (const char* method : kMethods) {
+        SCOPED_TRACE(method);
+        const Scene spot = builtin("cornell-box");
+        auto t = createTechnique(method);
+        ASSERT_TRUE(t.ok());
+        auto p = Pipeline::create(spot, std::move(*t), {16, 16}, smallRenderSettings());
+        ASSERT_FALSE(p.ok());
+        EXPECT_NE(p.error().message.find("light 'spot' is a spot light"), std::string::npos) << p.error().message;
+        EXPECT_NE(p.error().message.find(method), std::string::npos) << p.error().message;
+
+        Scene dark = facingSquares(0.2f, 0.2f, 0.3f, true);
+        dark.materials[0].emission = glm::vec3(0.0f);
+        auto t2 = createTechnique(method);
+        auto p2 = Pipeline::create(dark, std::move(*t2), {16, 16}, smallRenderSettings());
+        ASSERT_FALSE(p2.ok());
+        EXPECT_NE(p2.error().message.find("no area light and no emissive material"), std::string::npos) << p2.error().message;
+
+        auto t3 = createTechnique(method);
+        EXPECT_FALSE(applySettings(**t3, {{"visibilitySamples", "9"}}, method).ok());
+    }
+}
+
+TEST_F(RadiosityGpuTest, DisplayAndIntegrationVariants) {
+    // The nearest-filter debug view shows the same solution, texel by texel (Fig. 4.1.1); the mip-chain
+    // integration (the DX10 fallback) sums the same hemicubes as the compute reduction.
+    const Scene scene = builtin("cornell-box-area");
+    auto bilinear = makePipeline(scene, "radiosity-gather", {{"elementSize", "0.1"}, {"bounces", "2"}}, 32);
+    auto nearest = makePipeline(scene, "radiosity-gather", {{"elementSize", "0.1"}, {"bounces", "2"}, {"view", "nearest"}}, 32);
+    auto mip = makePipeline(scene, "radiosity-gather", {{"elementSize", "0.1"}, {"bounces", "2"}, {"integration", "mipmap"}}, 32);
+    for (auto* p : {bilinear.get(), nearest.get(), mip.get()}) p->renderFrame(0);
+    const Image a = bilinear->readback(Component::Full), b = nearest->readback(Component::Full);
+    auto m = compareImages(b, a);
+    EXPECT_GT(m->mae, 0.0) << "nearest differs from bilinear";
+    // The same solution: image means within 3 % (nearest and bilinear weight texels differently).
+    EXPECT_NEAR(totalRadiance(b) / totalRadiance(a), 1.0, 0.03);
+    const auto tc = radiosityOf(*bilinear).system().readTotal(), tm = radiosityOf(*mip).system().readTotal();
+    double worst = 0.0;
+    for (size_t k = 0; k < tc.size(); ++k)
+        worst = std::max(worst, double(glm::length(tc[k] - tm[k])) / std::max(1e-3, double(glm::length(tc[k]))));
+    RecordProperty("mipVsComputeWorstRelative", std::to_string(worst));
+    // Float summation order (mip levels of RGBA32F vs a 256-thread tree): 1e-4 relative.
+    EXPECT_LT(worst, 1e-4);
+}
+
+namespace {
+
+// A floor under an area light and a plate that jumps between frames: frame 0 beside the light's
+// footprint, frame 1 right under the light (a new shadow: the newly-occluded case), frame 2 off to
+// the other side (the shadow goes: the newly-visible case).
+Scene slidingOccluder() {
+    Scene s;
+    s.name = "sliding-occluder";
+    Material floor, plate;
+    floor.name = "floor";
+    floor.baseColor = glm::vec3(0.6f);
+    plate.name = "plate";
+    plate.baseColor = glm::vec3(0.9f);
+    s.materials = {floor, plate};
+    MeshBuilder fb("floor");
+    fb.quad({-0.6f, 0.0f, -0.6f}, {0.6f, 0.0f, -0.6f}, {0.6f, 0.0f, 0.6f}, {-0.6f, 0.0f, 0.6f}, {0, 1, 0});
+    // A ceiling around the light (an opening for it, as the Cornell box's): the plate's lit top
+    // reflects onto it, so the plate's own shot radiosity matters (the negative shot of Alg. 4.3).
+    MeshBuilder cb("ceiling");
+    const float y = 1.0f, h = 0.15f, w = 0.6f;
+    const glm::vec3 down(0, -1, 0);
+    cb.quad({-w, y, -w}, {w, y, -w}, {w, y, -h}, {-w, y, -h}, down);
+    cb.quad({-w, y, h}, {w, y, h}, {w, y, w}, {-w, y, w}, down);
+    cb.quad({-w, y, -h}, {-h, y, -h}, {-h, y, h}, {-w, y, h}, down);
+    cb.quad({h, y, -h}, {w, y, -h}, {w, y, h}, {h, y, h}, down);
+    MeshBuilder pb("plate");
+    pb.axisBox({-0.15f, 0.45f, -0.15f}, {0.15f, 0.5f, 0.15f});
+    s.meshes = {fb.take(), pb.take(), cb.take()};
+    Object f;
+    f.name = "floor";
+    f.mesh = 0;
+    f.material = 0;
+    Object p;
+    p.name = "plate";
+    p.mesh = 1;
+    p.material = 1;
+    p.animation.loop = false;
+    const float frame = 1.0f / s.frameRate;
+    for (auto [t, x] : {std::pair{0.0f, -0.45f}, std::pair{frame, 0.0f}, std::pair{2.0f * frame, 0.45f}}) {
+        TransformKey k;
+        k.time = t;
+        k.translation = {x, 0.0f, 0.0f};
+        p.animation.keys.push_back(k);
+    }
+    Object c;
+    c.name = "ceiling";
+    c.mesh = 2;
+    c.material = 0;
+    s.objects = {f, p, c};
+    Light l;
+    l.name = "panel";
+    l.type = LightType::Area;
+    l.position = {0.0f, 1.0f, 0.0f};
+    l.edgeU = {0.3f, 0.0f, 0.0f};
+    l.edgeV = {0.0f, 0.0f, 0.3f};  // cross(U, V) = -y: emits downward
+    l.radiance = glm::vec3(10.0f);
+    s.lights = {l};
+    s.camera.position = {0.0f, 0.9f, 1.3f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    return s;
+}
+
+// Area-weighted relative RMS difference of B over the static elements (floor and ceiling).
+double staticDifference(RadiosityTechnique& a, RadiosityTechnique& b) {
+    const auto& pm = a.system().patches();
+    const auto ba = a.system().readTotal(), bb = b.system().readTotal();
+    double num = 0.0, den = 0.0;
+    for (size_t k = 0; k < ba.size(); ++k) {
+        const radiosity::Element& e = pm.elements()[k];
+        if (pm.quads()[e.quad].body == 1 || (pm.quads()[e.quad].flags & RAD_QUAD_LIGHT)) continue;
+        num += double(glm::dot(ba[k] - bb[k], ba[k] - bb[k])) * e.area;
+        den += double(glm::dot(bb[k], bb[k])) * e.area;
+    }
+    return std::sqrt(num / den);
+}
+
+}  // namespace
+
+TEST_F(RadiosityGpuTest, RedistributionFollowsASuddenOcclusionAndItsRemoval) {
+    // Progressive refinement restarts every frame: the truth for the same elements. Incremental
+    // radiosity must reach it by modification alone (the four visibility cases, the negative shot),
+    // cross redistribution by its cross projection (approximate: 16 rays through coarse patches).
+    const Scene scene = slidingOccluder();
+    const std::map<std::string, std::string> settings = {{"elementSize", "0.05"}, {"dynamicElementSize", "0.05"}, {"threshold", "0.001"}};
+    auto pr = makePipeline(scene, "radiosity-pr", settings, 32);
+    auto inc = makePipeline(scene, "radiosity-incremental", settings, 32);
+    auto cross = makePipeline(scene, "radiosity-cross", settings, 32);
+    for (uint32_t f = 0; f < 3; ++f) {
+        SCOPED_TRACE(f);
+        for (auto* p : {pr.get(), inc.get(), cross.get()}) p->renderFrame(f);
+        const double dInc = staticDifference(radiosityOf(*inc), radiosityOf(*pr));
+        const double dCross = staticDifference(radiosityOf(*cross), radiosityOf(*pr));
+        RecordProperty("frame" + std::to_string(f) + "_incremental_vs_pr", std::to_string(dInc));
+        RecordProperty("frame" + std::to_string(f) + "_cross_vs_pr", std::to_string(dCross));
+        // The shadow covers a quarter of the lit floor: leaving it out gives ~0.3 (see the mutations
+        // in docs/techniques/radiosity.md). Incremental differs from PR only by the order of shots and
+        // the threshold's remainder; cross also by its projection's undersampling.
+        EXPECT_LT(dInc, 0.02);
+        EXPECT_LT(dCross, 0.1);
     }
 }

@@ -144,12 +144,13 @@ void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterati
             auto s = ctx.timers.scope("radiosity.select");
             stats = m_system->quadStats();
         }
-        // FINDSHOOTINGQUAD: the highest area-weighted mean unshot radiance (luminance).
+        // FINDSHOOTINGQUAD: the highest area-weighted mean unshot radiance (luminance), by magnitude:
+        // redistribution leaves negative unshot radiosity (removed light) that must propagate too.
         int best = -1;
         float bestMean = 0.0f;
         for (size_t q = 0; q < quads.size(); ++q) {
             if (stats[q].area <= 0.0f || (removeMoving && m_system->bodyMoving(quads[q].body))) continue;
-            const float mean = luminance(stats[q].unshot) / stats[q].area;
+            const float mean = std::abs(luminance(stats[q].unshot)) / stats[q].area;
             if (mean > bestMean) {
                 bestMean = mean;
                 best = static_cast<int>(q);
@@ -159,7 +160,7 @@ void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterati
             m_converged = true;
             break;
         }
-        const auto rects = subdivide(static_cast<uint32_t>(best), glm::pi<float>() * luminance(stats[best].unshot));
+        const auto rects = subdivide(static_cast<uint32_t>(best), glm::pi<float>() * std::abs(luminance(stats[best].unshot)));
         m_system->loadShooters(rects);
         const auto n = static_cast<uint32_t>(rects.size());
         m_system->computeShooters(0, n, false);

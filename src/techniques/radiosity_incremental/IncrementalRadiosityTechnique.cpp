@@ -49,7 +49,7 @@ void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {
     std::vector<ShooterRect> rects;
     for (uint32_t q = 0; q < quads.size(); ++q)
         if (m_system->bodyMoving(quads[q].body) && stats[q].area > 0.0f) {
-            const auto r = subdivide(q, pi * luminance(stats[q].shot));
+            const auto r = subdivide(q, pi * std::abs(luminance(stats[q].shot)));
             rects.insert(rects.end(), r.begin(), r.end());
         }
     m_system->loadShooters(rects);
@@ -68,7 +68,7 @@ void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {
     stats = m_system->quadStats();
     for (uint32_t q = 0; q < quads.size(); ++q) {
         if (m_system->bodyMoving(quads[q].body) || stats[q].area <= 0.0f) continue;
-        const auto r = subdivide(q, pi * luminance(stats[q].total));
+        const auto r = subdivide(q, pi * std::abs(luminance(stats[q].total)));
         m_system->loadShooters(r);
         const auto ns = static_cast<uint32_t>(r.size());
         m_system->computeShooters(0, ns, false);
