@@ -1,14 +1,29 @@
 #!/usr/bin/env bash
 # Renders every built-in scene with every registered technique into OUT (PNG, tone-mapped).
+# A technique that cannot shade a scene refuses it with a one-line error and exit status 1 (hemicube
+# radiosity takes only area lights and emissive surfaces): that pair is listed as skipped. Any
+# other failure (a crash, an abort) stops the demo.
 set -euo pipefail
 bounce="$1"; out="$2"; size="$3"
 mkdir -p "$out"
 scenes=$("$bounce" list --scenes --names)
 techniques=$("$bounce" list --techniques --names)
+skipped=0
 for s in $scenes; do
   for t in $techniques; do
-    "$bounce" render --scene "$s" --technique "$t" --size "$size" --frames 1 \
-      --out "$out/$s-$t.png" --stats "$out/$s-$t.json"
+    status=0
+    message=$("$bounce" render --scene "$s" --technique "$t" --size "$size" --frames 1 \
+      --out "$out/$s-$t.png" --stats "$out/$s-$t.json" 2>&1) || status=$?
+    if [ "$status" -eq 1 ]; then
+      echo "demo: skipped $s x $t: $message"
+      skipped=$((skipped + 1))
+    elif [ "$status" -ne 0 ]; then
+      echo "$message" >&2
+      echo "demo: $s x $t failed with status $status" >&2
+      exit "$status"
+    elif [ -n "$message" ]; then
+      echo "$message"
+    fi
   done
 done
-echo "demo: images are in $(cd "$out" && pwd)/ ($(ls "$out"/*.png | wc -l) PNG files, run records beside them)"
+echo "demo: images are in $(cd "$out" && pwd)/ ($(ls "$out"/*.png | wc -l) PNG files, run records beside them; $skipped pairs skipped)"

@@ -1,5 +1,6 @@
 // van de Hoef 2013: what a hemicube pixel holds. Host define RAD_HC_MODE:
-//   0 ID hemicube (sec. 4.3, R32UI): the quad ID + 1 (0 = nothing), for the visibility tests;
+//   0 ID hemicube (sec. 4.3, R32UI): the surface ID + 1 (0 = nothing) of the seen quad, for the
+//     visibility tests (the thesis's quad IDs: its quads are whole coplanar surfaces);
 //   1 radiosity hemicube (gather, Alg. 4.1; RGBA16F): B of the seen element, bilinear;
 //   2 combined ID + shot hemicube (Alg. 4.4 line 7): the ID and the shot radiosity B - Bu of the
 //     static quads C (moving quads M occlude with 0: R_g(C, M) gathers from C only);
@@ -34,7 +35,7 @@ void main() {
     RadHemicubeGpu h = u_hemicubes[u_hemicube];
     bool front = dot(g_normalWorld, h.origin.xyz - g_posWorld) > 0.0;
 #if RAD_HC_MODE == 0 || RAD_HC_MODE == 2
-    o_id = g_quad == RAD_NO_QUAD ? 0u : g_quad + 1u;
+    o_id = g_quad == RAD_NO_QUAD ? 0u : u_quads[g_quad].info.w + 1u;
 #endif
     vec3 total = vec3(0.0), shot = vec3(0.0);
     if (g_quad != RAD_NO_QUAD && front) {

@@ -44,7 +44,7 @@ struct RadQuadGpu {
     vec4 normal;          // object-space unit normal (front side); w: area, m^2
     vec4 emission;        // rgb: emitted radiance E, W/(m^2 sr); w: unused
     uvec4 atlas;          // x, y: texel offset of the region; z: nu; w: nv (>= 2 each)
-    uvec4 info;           // x: body; y: first element; z: RAD_QUAD_* flags; w: unused
+    uvec4 info;           // x: body; y: first element; z: RAD_QUAD_* flags; w: surface (what ID hemicubes hold)
 };
 
 // One element = one atlas texel (a receiver).

@@ -1,7 +1,7 @@
 // van de Hoef 2013: the per-element reconstruction shaders ("gathering shot radiosity", sec. 4.3:
 // one thread per receiving element, coherent writes). For each shooter s of the batch:
-//   visibility: the quad ID of the shooter's ID hemicube in the direction of e, the four nearest
-//     pixels (sec. 5.2.1; visibilitySamples = 1 takes the nearest only), compared with e's quad;
+//   visibility: the surface ID of the shooter's ID hemicube in the direction of e, the four nearest
+//     pixels (sec. 5.2.1; visibilitySamples = 1 takes the nearest only), compared with e's surface;
 //   F_se: the disk approximation of Eq. 2.2.7, split into sub-disks when A_s / r^2 exceeds
 //     ffSubdivideRatio (sec. 4.3.3, the adaptive form-factor subdivision);
 //   Delta B_e = rho_e R_s A_s F_se (Eq. 2.2.8; formFactor() returns A_s F_se), added to B_e and Bu_e.
@@ -32,33 +32,33 @@ const float kPi = 3.14159265358979;
 // Record index of shooter k's hemicube in role r (RadiositySystem::recordIndex).
 uint recordOf(uint k, uint role) { return u_pass.slots.y + role * uint(RAD_MAX_BATCH) + k; }
 
-bool visibleOld(uint k, vec3 target, uint quad) {
+bool visibleOld(uint k, vec3 target, uint surface) {
     RadHemicubeGpu h = u_hemicubes[recordOf(k, 0u)];
     int R = int(u_pass.counts.y), face;
     vec2 px;
     if (!hcProject(h, target - h.origin.xyz, float(R), face, px)) return false;
     ivec2 size = hcFaceSize(face, R);
     int layer = int(k) * 5 + face;
-    if (u_pass.modes.w == 1u) return texelFetch(s_idOld, ivec3(clamp(ivec2(px), ivec2(0), size - 1), layer), 0).r == quad + 1u;
+    if (u_pass.modes.w == 1u) return texelFetch(s_idOld, ivec3(clamp(ivec2(px), ivec2(0), size - 1), layer), 0).r == surface + 1u;
     ivec2 base = ivec2(floor(px - 0.5));
     for (int j = 0; j < 4; ++j) {
         ivec2 p = clamp(base + ivec2(j & 1, j >> 1), ivec2(0), size - 1);
-        if (texelFetch(s_idOld, ivec3(p, layer), 0).r == quad + 1u) return true;
+        if (texelFetch(s_idOld, ivec3(p, layer), 0).r == surface + 1u) return true;
     }
     return false;
 }
-bool visibleNew(uint k, vec3 target, uint quad) {
+bool visibleNew(uint k, vec3 target, uint surface) {
     RadHemicubeGpu h = u_hemicubes[recordOf(k, 1u)];
     int R = int(u_pass.counts.y), face;
     vec2 px;
     if (!hcProject(h, target - h.origin.xyz, float(R), face, px)) return false;
     ivec2 size = hcFaceSize(face, R);
     int layer = int(k) * 5 + face;
-    if (u_pass.modes.w == 1u) return texelFetch(s_idNew, ivec3(clamp(ivec2(px), ivec2(0), size - 1), layer), 0).r == quad + 1u;
+    if (u_pass.modes.w == 1u) return texelFetch(s_idNew, ivec3(clamp(ivec2(px), ivec2(0), size - 1), layer), 0).r == surface + 1u;
     ivec2 base = ivec2(floor(px - 0.5));
     for (int j = 0; j < 4; ++j) {
         ivec2 p = clamp(base + ivec2(j & 1, j >> 1), ivec2(0), size - 1);
-        if (texelFetch(s_idNew, ivec3(p, layer), 0).r == quad + 1u) return true;
+        if (texelFetch(s_idNew, ivec3(p, layer), 0).r == surface + 1u) return true;
     }
     return false;
 }
@@ -138,27 +138,28 @@ void main() {
     vec3 x = (radWorldFromObject(e.info.z, recvOld) * vec4(e.position.xyz, 1.0)).xyz;
     vec3 n = radNormalToWorld(e.info.z, recvOld, u_quads[e.info.x].normal.xyz);
     uint mode = u_pass.modes.x;
+    uint surface = u_quads[e.info.x].info.w;
     vec3 dB = vec3(0.0);
     for (uint k = 0u; k < u_pass.modes.z; ++k) {
         RadShooterGpu s = u_shooters[u_pass.slots.x + k];
-        if (s.info.x == e.info.x) continue;  // a planar quad does not see itself
+        if (u_quads[s.info.x].info.w == surface) continue;  // a planar surface does not see itself
         if (mode == uint(RAD_SHOOT_UNSHOT) || mode == uint(RAD_SHOOT_TOTAL)) {
-            if (!visibleNew(k, x, e.info.x)) continue;
+            if (!visibleNew(k, x, surface)) continue;
             dB += (mode == uint(RAD_SHOOT_UNSHOT) ? s.unshot.rgb : s.total.rgb) * formFactor(s, false, x, n);
         } else if (mode == uint(RAD_SHOOT_NEG_SHOT)) {
-            if (!visibleOld(k, x, e.info.x)) continue;
+            if (!visibleOld(k, x, surface)) continue;
             dB -= s.shot.rgb * formFactor(s, true, x, n);
         } else if (mode == uint(RAD_SHOOT_INCREMENTAL)) {
-            bool vo = visibleOld(k, x, e.info.x), vn = visibleNew(k, x, e.info.x);
+            bool vo = visibleOld(k, x, surface), vn = visibleNew(k, x, surface);
             if (!vo && !vn) continue;
             vec3 R = vo && !vn ? -s.shot.rgb : (!vo && vn ? s.total.rgb : s.unshot.rgb);
             // Static shooters: the old and new positions coincide, one form factor serves both.
             dB += R * formFactor(s, false, x, n);
         } else {  // RAD_SHOOT_CROSS
             // Inserting M (sec. 4.5.2, after the initial solution without it) has no old position.
-            if (u_pass.params.w == 0.0 && visibleOld(k, x, e.info.x))
+            if (u_pass.params.w == 0.0 && visibleOld(k, x, surface))
                 dB += (-s.shot.rgb + projectedRadiosity(k, s, true, x)) * formFactor(s, true, x, n);
-            if (visibleNew(k, x, e.info.x))
+            if (visibleNew(k, x, surface))
                 dB += (s.total.rgb - projectedRadiosity(k, s, false, x)) * formFactor(s, false, x, n);
         }
     }

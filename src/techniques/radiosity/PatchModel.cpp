@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -295,8 +296,51 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
     if (pm.m_elements.size() > opt.maxElements)
         return makeError("more than {} radiosity elements: raise elementSize (now {} m)", opt.maxElements, opt.elementSize);
 
-    // 3. Element positions and areas (texel cells clipped to the quad, integrated over the map).
-    for (Quad& q : pm.m_quads) {
+    // 3. Which quad edges continue into a coplanar neighbour (the same two corners, any body): there
+    //    the border samples coincide with the neighbour's and stay on the edge; elsewhere (a junction
+    //    with a wall, a free edge, a T-junction) they are inset. Edges: 0 p0-p1 (j = 0), 1 p1-p2
+    //    (i = nu-1), 2 p2-p3 (j = nv-1), 3 p3-p0 (i = 0).
+    std::map<std::pair<Key, Key>, std::vector<std::pair<uint32_t, int>>> quadEdges;
+    const auto edgeKey = [](glm::vec3 a, glm::vec3 b) {
+        Key u = keyOf(a), w = keyOf(b);
+        if (w < u) std::swap(u, w);
+        return std::make_pair(u, w);
+    };
+    std::vector<glm::mat4> restFrame(pm.m_bodyCount);
+    for (uint32_t b = 0; b < pm.m_bodyCount; ++b) restFrame[b] = pm.bodyTransform(scene, b, 0.0f);
+    const auto world = [&](const Quad& q, int k) { return glm::vec3(restFrame[q.body] * glm::vec4(q.p[k], 1.0f)); };
+    for (uint32_t qi = 0; qi < pm.m_quads.size(); ++qi) {
+        const Quad& q = pm.m_quads[qi];
+        if (q.map == QuadMap::Triangle) continue;
+        for (int e = 0; e < 4; ++e) quadEdges[edgeKey(world(q, e), world(q, (e + 1) % 4))].push_back({qi, e});
+    }
+    std::vector<std::array<bool, 4>> shared(pm.m_quads.size(), {false, false, false, false});
+    for (const auto& [key, list] : quadEdges)
+        for (const auto& [qa, ea] : list)
+            for (const auto& [qb, eb] : list) {
+                if (qa == qb) continue;
+                const glm::vec3 na = glm::mat3(restFrame[pm.m_quads[qa].body]) * pm.m_quads[qa].normal;
+                const glm::vec3 nb = glm::mat3(restFrame[pm.m_quads[qb].body]) * pm.m_quads[qb].normal;
+                if (glm::dot(glm::normalize(na), glm::normalize(nb)) >= kCoplanarCosine) shared[qa][ea] = true;
+            }
+    // Surfaces: quads of one body joined by shared coplanar edges (union-find). The thesis's "quad"
+    // is such a surface ("a coplanar surface made of patches"); visibility compares surfaces, so a
+    // sample on the edge between two cells of one wall is not hidden by its own wall.
+    std::vector<uint32_t> parent(pm.m_quads.size());
+    for (uint32_t k = 0; k < parent.size(); ++k) parent[k] = k;
+    const auto find = [&](uint32_t k) {
+        while (parent[k] != k) k = parent[k] = parent[parent[k]];
+        return k;
+    };
+    for (const auto& [key, list] : quadEdges)
+        for (const auto& [qa, ea] : list)
+            for (const auto& [qb, eb] : list)
+                if (qa != qb && shared[qa][ea] && pm.m_quads[qa].body == pm.m_quads[qb].body) parent[find(qa)] = find(qb);
+    for (uint32_t k = 0; k < parent.size(); ++k) pm.m_quads[k].surface = find(k);
+
+    // 4. Element positions and areas (texel cells clipped to the quad, integrated over the map).
+    for (uint32_t qi = 0; qi < pm.m_quads.size(); ++qi) {
+        Quad& q = pm.m_quads[qi];
         const float ds = 1.0f / static_cast<float>(q.nu - 1), dt = 1.0f / static_cast<float>(q.nv - 1);
         double sum = 0.0;
         for (int j = 0; j < q.nv; ++j)
@@ -314,11 +358,12 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
                 a *= double(s1 - s0) * double(t1 - t0) / (kAreaSamples * kAreaSamples);
                 el.area = static_cast<float>(a);
                 sum += a;
-                // Border samples move inward, perpendicular to their edge (corners along both).
-                if (i == 0) st.x += opt.borderInset * ds;
-                if (i == q.nu - 1) st.x -= opt.borderInset * ds;
-                if (j == 0) st.y += opt.borderInset * dt;
-                if (j == q.nv - 1) st.y -= opt.borderInset * dt;
+                // Border samples on an edge without a coplanar neighbour move inward, perpendicular to it.
+                const auto& sh = shared[qi];
+                if (i == 0 && !sh[3]) st.x += opt.borderInset * ds;
+                if (i == q.nu - 1 && !sh[1]) st.x -= opt.borderInset * ds;
+                if (j == 0 && !sh[0]) st.y += opt.borderInset * dt;
+                if (j == q.nv - 1 && !sh[2]) st.y -= opt.borderInset * dt;
                 if (q.map == QuadMap::Triangle && st.x + st.y > 1.0f) st -= glm::vec2(0.5f * (st.x + st.y - 1.0f));
                 el.position = pointAt(q, st);
             }
@@ -327,7 +372,7 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
             for (int k = 0; k < q.nu * q.nv; ++k) pm.m_elements[q.firstElement + static_cast<size_t>(k)].area *= static_cast<float>(q.area / sum);
     }
 
-    // 4. Atlas: shelf packing, tallest regions first.
+    // 5. Atlas: shelf packing, tallest regions first.
     std::vector<size_t> order(pm.m_quads.size());
     size_t texels = 0;
     int widest = 0;

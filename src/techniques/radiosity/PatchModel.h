@@ -13,11 +13,13 @@
 // Element areas: a texel's cell is the square around its centre clipped to the quad, so edge texels
 // own half a cell and corner texels a quarter (the "reduced areas" of sec. 4.1); the integral runs
 // over the exact piecewise-linear surface map and the areas sum to the quad's area. Border texels
-// sit at distance 0 from the neighbouring quads; their sample position (not their display position)
-// is moved inward by borderInset texel pitches. The thesis offsets corner texels only ("a small
-// offset", value not given); an edge texel on a concave junction (floor meets wall) has the same
-// singularity: its hemicube straddles the other wall's plane and integrates half a hemisphere
-// (measured 0.500 against 1.000 in the furnace), so every border texel is inset here.
+// sit at distance 0 from the neighbouring quads. Where a quad edge continues into a coplanar
+// neighbour (same two corners) the samples coincide with the neighbour's, as the thesis intends;
+// on every other edge (a junction with a wall, a free edge) the sample position (not the display
+// position) moves inward by borderInset texel pitches. The thesis offsets corner texels only ("a
+// small offset", value not given); an edge texel on a concave junction (floor meets wall) has the
+// same singularity: its hemicube straddles the other wall's plane and integrates half a hemisphere
+// (measured 0.500 against 1.000 in the furnace).
 #include "core/Error.h"
 #include "scene/Scene.h"
 
@@ -49,6 +51,7 @@ struct Quad {
     int atlasX = 0, atlasY = 0;
     uint32_t firstElement = 0;
     uint32_t flags = 0;      // RAD_QUAD_*
+    uint32_t surface = 0;    // the coplanar surface (quads of one body joined at shared edges) it is part of
 };
 
 struct Element {

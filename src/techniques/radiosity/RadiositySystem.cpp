@@ -107,7 +107,7 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
         g.normal = glm::vec4(q.normal, q.area);
         g.emission = glm::vec4(q.emission, 0.0f);
         g.atlas = glm::uvec4(q.atlasX, q.atlasY, q.nu, q.nv);
-        g.info = glm::uvec4(q.body, q.firstElement, q.flags, 0u);
+        g.info = glm::uvec4(q.body, q.firstElement, q.flags, q.surface);
         quads.push_back(g);
         s.m_maxShooters = std::max(s.m_maxShooters, static_cast<uint32_t>(q.nu * q.nv));
     }

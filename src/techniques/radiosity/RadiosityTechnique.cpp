@@ -74,9 +74,7 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
     m_options.patches.elementSize = m_elementSize;
     m_options.patches.dynamicElementSize = m_dynamicElementSize;
     adjustOptions(m_options);
-    auto sys = RadiositySystem::create(ctx.scene, m_options);
-    if (!sys.ok()) return makeError("{}: {}", name(), sys.error().message);
-    m_system = std::move(sys).value();
+    BOUNCE_TRY(m_system, RadiositySystem::create(ctx.scene, m_options));
     m_maxEmission = 0.0f;
     for (const Element& e : m_system->patches().elements()) m_maxEmission = std::max(m_maxEmission, luminance(e.emission));
     return {};
