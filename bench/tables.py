@@ -113,7 +113,64 @@ def photon_splat_table(rec, path):
     return "\n".join(lines)
 
 
-GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table}
+RAD_METHODS = ["radiosity-gather", "radiosity-pr", "radiosity-incremental", "radiosity-cross"]
+RAD_SCENES = ["indirect-light", "cornell-large", "cornell-small", "low-quality"]
+RAD_SCENE_TITLES = {"indirect-light": "Indirect light", "cornell-large": "Cornell, large", "cornell-small": "Cornell, small",
+                    "low-quality": "Low quality"}
+
+
+def radiosity_table(rec, path):
+    sp, q = rec["speed"], rec["quality"]
+    scenes = [s for s in RAD_SCENES if s in sp]
+    idx = {s: RAD_SCENES.index(s) for s in scenes}
+    lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); "
+             f"`{rec['command']}`, {rec['size']}² images, methods interleaved, {rec['reps']} repetitions; frame time = the "
+             "technique's GPU scope, median (min–max) over the frames after the first. Thesis: GTX 670, Table 5.2a. "
+             "llvmpipe times are indicative; the orders and ratios are the result.", "",
+             "R2 — frame time, ms (thesis ms in brackets), and hemicubes per frame:", "",
+             "| method | " + " | ".join(RAD_SCENE_TITLES[s] for s in scenes) + " |", "|---|" + "---|" * len(scenes)]
+    for m in RAD_METHODS:
+        cells = [f"{rng(sp[s][m]['frameMs'])} [{rec['thesisMs'][m][idx[s]]}], {sp[s][m]['hemicubes']:.0f} hc" for s in scenes]
+        lines.append(f"| `{m}` | " + " | ".join(cells) + " |")
+    thesis_ratio = {s: rec["thesisMs"]["radiosity-pr"][idx[s]] / rec["thesisMs"]["radiosity-cross"][idx[s]] for s in scenes}
+    lines.append("| cross over PR | " + " | ".join(
+        f"{sp[s]['crossOverPr']:.2f}× (per rep {min(sp[s]['crossOverPrPerRep']):.2f}–{max(sp[s]['crossOverPrPerRep']):.2f}) [{thesis_ratio[s]:.1f}×]"
+        for s in scenes) + " |")
+    lines.append("| elements (static + moving, cross's moving) | " + " | ".join(
+        f"{sp[s]['radiosity-pr']['elements']:.0f}, {sp[s]['radiosity-cross']['movingElements']:.0f}" for s in scenes) + " |")
+    r1 = rec["r1"]
+    sizes = list(r1["radiosity-cross"].keys())
+    lines += ["", "R1 — `cornell-large`, moving patches fixed, static elements growing (`elementSize` " + ", ".join(sizes) + " m):", "",
+              "| method | " + " | ".join(f"{r1['radiosity-cross'][z]['staticElements']:.0f} static" for z in sizes) + " | last / first |",
+              "|---|" + "---|" * (len(sizes) + 1)]
+    for m in ["radiosity-cross", "radiosity-incremental"]:
+        d = r1[m]
+        lines.append(f"| `{m}` | " + " | ".join(f"{rng(d[z]['frameMs'])} ms, {d[z]['hemicubes']:.0f} hc" for z in sizes) +
+                     f" | {med(d[sizes[-1]]['frameMs']) / med(d[sizes[0]]['frameMs']):.2f}× |")
+    lines += ["", "R8 — cross redistribution per moving patch (GPU scopes / patches; thesis: cross projection 0.172 ms, "
+              "a hemicube 0.023–0.058 ms):", "", "| scene | patches | cross projection ms/patch | hemicubes ms/patch | ms/hemicube | gather hemicubes/s |",
+              "|---|---|---|---|---|---|"]
+    for s in scenes:
+        r8 = sp[s]["r8"]
+        hps = sp[s].get("gatherHemicubesPerSecond")
+        lines.append(f"| {RAD_SCENE_TITLES[s]} | {r8['patches']:.0f} | {r8['crossProjectionMsPerPatch']:.3f} | {r8['hemicubeMsPerPatch']:.3f} | "
+                     f"{r8['hemicubeMsPerHemicube']:.3f} | {hps:.0f} |" if hps else f"| {RAD_SCENE_TITLES[s]} | {r8['patches']:.0f} | "
+                     f"{r8['crossProjectionMsPerPatch']:.3f} | {r8['hemicubeMsPerPatch']:.3f} | {r8['hemicubeMsPerHemicube']:.3f} | – |")
+    qs = [s for s in scenes if s in q]
+    lines += ["", "Table 5.1 — frame 12, NRMSE (RMS difference of the ACES display values / the reference's display range) against the path tracer (every bounce, Lambert), "
+              "thesis NRMSE against its high-quality gather in brackets; relMSE and NRMSE against `radiosity-gather` at high settings "
+              "(`hemicubeSize=128`, 16–32 sweeps):", "",
+              "| method | " + " | ".join(RAD_SCENE_TITLES[s] for s in qs) + " |", "|---|" + "---|" * len(qs)]
+    for m in RAD_METHODS:
+        lines.append(f"| `{m}` | " + " | ".join(
+            f"{q[s][m]['vsReference']['nrmse']:.4f} [{rec['thesisNrmse'][m][idx[s]]:.4f}]; relMSE {q[s][m]['vsReference']['relMse']:.4f}; "
+            f"vs gather-high {q[s][m]['vsGatherHigh']['nrmse']:.4f}" for s in qs) + " |")
+    lines.append("| gather-high | " + " | ".join(f"{q[s]['gatherHighVsReference']['nrmse']:.4f}; relMSE {q[s]['gatherHighVsReference']['relMse']:.4f}" for s in qs) + " |")
+    lines.append("| reference noise (seed 1 vs 0) | " + " | ".join(f"{q[s]['referenceNoise']['nrmse']:.4f}; relMSE {q[s]['referenceNoise']['relMse']:.4f}" for s in qs) + " |")
+    return "\n".join(lines)
+
+
+GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table}
 
 
 def main():

@@ -20,6 +20,7 @@ struct RenderOptions {
     std::string technique = "direct";
     std::string size = "512x512";
     int frames = 1;
+    int startFrame = 0;
     std::vector<std::string> settings;
     std::string component = "full";
     std::string out;
@@ -33,6 +34,7 @@ int runRender(const RenderOptions& o) {
     auto component = parseComponent(o.component);
     if (!component.ok()) return failCommand(cmd, "--component: " + component.error().message);
     if (o.frames < 1) return failCommand(cmd, fmt::format("--frames {} must be at least 1", o.frames));
+    if (o.startFrame < 0) return failCommand(cmd, fmt::format("--start-frame {} must not be negative", o.startFrame));
     if (auto f = imageFormatFor(o.out); !f.ok()) return failCommand(cmd, "--out " + f.error().message);
     if (auto w = checkWritable(o.out); !w.ok()) return failCommand(cmd, "--out " + w.error().message);
     if (!o.stats.empty())
@@ -51,7 +53,7 @@ int runRender(const RenderOptions& o) {
     if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
 
     std::vector<FrameStats> frames;
-    for (int f = 0; f < o.frames; ++f) frames.push_back((*pipeline)->renderFrame(static_cast<uint32_t>(f)));
+    for (int f = o.startFrame; f < o.startFrame + o.frames; ++f) frames.push_back((*pipeline)->renderFrame(static_cast<uint32_t>(f)));
     if (gl::Context::debugErrorCount() > 0)
         spdlog::warn("{} GL errors were reported during rendering", gl::Context::debugErrorCount());
     const Image image = (*pipeline)->readback(*component);
@@ -62,7 +64,7 @@ int runRender(const RenderOptions& o) {
     if (auto r = writeImage(o.out, image, toneMap); !r.ok()) return failCommand(cmd, r.error().message);
     if (!o.stats.empty()) {
         nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
-                                {"frame_count", o.frames}};
+                                {"frame_count", o.frames}, {"start_frame", o.startFrame}};
         const auto record = renderRunRecord(*scene, **pipeline, frames, (*context)->info(), extra);
         if (auto r = writeTextFileAtomic(o.stats, record.dump(2) + "\n"); !r.ok()) return failCommand(cmd, r.error().message);
     }
@@ -82,6 +84,10 @@ void registerRenderCommand(CLI::App& root, CommandAction& action) {
     c->add_option("--technique", options->technique, "technique name (see `bounce list`)")->capture_default_str();
     c->add_option("--size", options->size, "image size WIDTHxHEIGHT")->capture_default_str();
     c->add_option("--frames", options->frames, "frames to render; animation advances, the last is written")
+        ->capture_default_str();
+    c->add_option("--start-frame", options->startFrame,
+                  "first frame (its time is frame / frameRate); a technique that keeps state across frames starts "
+                  "its history there")
         ->capture_default_str();
     c->add_option("--set", options->settings, "setting name=value; renderer.NAME for shared passes (repeatable)");
     c->add_option("--component", options->component, "full, direct or indirect")->capture_default_str();

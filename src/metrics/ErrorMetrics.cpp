@@ -118,6 +118,16 @@ Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, 
     const Image testDisplay = toDisplay(test, options.testToneMap);
     const Image referenceDisplay = toDisplay(reference, options.referenceToneMap);
     m.psnr = psnr(testDisplay, referenceDisplay);
+    {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const glm::vec3& v : referenceDisplay.pixels())
+            for (int c = 0; c < 3; ++c) {
+                lo = std::min(lo, double(v[c]));
+                hi = std::max(hi, double(v[c]));
+            }
+        const double rmse = std::sqrt(channelMean(testDisplay, referenceDisplay, squared));
+        m.nrmse = hi > lo ? rmse / (hi - lo) : (rmse > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    }
     m.rmsSum8 = rmsSum8Bit(testDisplay, referenceDisplay);
     m.ssim = meanSsim(testDisplay, referenceDisplay);
 
@@ -137,6 +147,8 @@ nlohmann::json toJson(const ErrorMetrics& m) {
     nlohmann::json j;
     j["mse"] = m.mse;
     j["rmse"] = m.rmse;
+    if (std::isfinite(m.nrmse)) j["nrmse"] = m.nrmse;
+    else j["nrmse"] = nullptr;
     j["relMse"] = m.relMse;
     j["mae"] = m.mae;
     j["psnr"] = std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json(nullptr);

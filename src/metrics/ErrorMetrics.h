@@ -33,6 +33,9 @@ struct CompareOptions {
 struct ErrorMetrics {
     double mse = 0.0;     // mean over pixels and channels of (x - r)^2, linear
     double rmse = 0.0;    // sqrt(mse)
+    double nrmse = 0.0;   // RMSE of the display values / (max - min of the reference's display values);
+                          // van de Hoef 2013 Table 5.1 compares its figures' images by an NRMSE whose
+                          // normalisation it does not give: this is the range one on what is shown
     double relMse = 0.0;  // mean of (x - r)^2 / (r^2 + ε), ε = kRelMseEpsilon, linear
     double mae = 0.0;     // mean of |x - r|, linear
     double psnr = 0.0;    // 10 log10(1 / MSE of display values), dB; +infinity for identical displays

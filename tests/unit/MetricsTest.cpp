@@ -618,3 +618,21 @@ TEST(RmsSum8, SumsTheChannelsRmsOn8BitValues) {
     EXPECT_NEAR(rmsSum8Bit(a, b), std::sqrt(50.0) + std::sqrt(200.0), 1e-9);
     EXPECT_EQ(rmsSum8Bit(a, a), 0.0);
 }
+
+TEST(ErrorMetrics, NrmseIsRmseOverTheReferenceRange) {
+    // On display values (clamp at 0 EV: the sRGB encoding of the linear value) the reference spans
+    // [0, 1]; the test is 0.1 brighter on three of four pixels (the fourth clamps): RMSE sqrt(0.03/4).
+    Image ref(4, 1), test(4, 1);
+    for (int x = 0; x < 4; ++x) {
+        const float d = x / 3.0f;
+        ref.at(x, 0) = glm::vec3(srgbDecode(d));
+        test.at(x, 0) = glm::vec3(srgbDecode(std::min(1.0f, d + 0.1f)));
+    }
+    CompareOptions o;
+    o.testToneMap = o.referenceToneMap = kDisplayImageToneMap;
+    auto m = compareImages(test, ref, o);
+    ASSERT_TRUE(m.ok());
+    EXPECT_NEAR(m->nrmse, std::sqrt(0.03 / 4.0), 1e-5);
+    auto same = compareImages(ref, ref, o);
+    EXPECT_EQ(same->nrmse, 0.0);
+}

@@ -53,7 +53,7 @@ protected:
     float m_dynamicElementSize = 0.05f;
     float m_threshold = 1e-3f;
     int m_maxIterations = 400;
-    float m_shooterFlux = 0.01f;
+    float m_shooterFlux = 0.003f;
     int m_batch = 10;
     std::string m_view{"bilinear"};
 
