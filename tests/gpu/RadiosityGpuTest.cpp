@@ -225,8 +225,8 @@ TEST_F(RadiosityGpuTest, AgreesWithThePathTracerAndWithGather) {
         const double ratio = totalRadiance(a) / totalRadiance(b);
         RecordProperty(std::string(method) + "_relMse", std::to_string(m->relMse));
         RecordProperty(std::string(method) + "_ratio", std::to_string(ratio));
-        // Measured: gather 0.020 / 0.969, pr 0.022 / 0.955, incremental 0.021 / 0.944, cross 0.039 /
-        // 0.977. The path tracer's 256 spp noise alone is relMSE ~0.01; the radiosity methods lose a few
+        // Measured: gather 0.020 / 0.969, pr 0.021 / 0.964, incremental 0.021 / 0.964, cross 0.039 /
+        // 0.982. The path tracer's 256 spp noise alone is relMSE ~0.01; the radiosity methods lose a few
         // per cent to the disk approximation and the threshold (the thesis's PR is darker too).
         EXPECT_LT(m->relMse, std::string(method) == "radiosity-cross" ? 0.06 : 0.035);
         EXPECT_GT(ratio, 0.92);
@@ -237,7 +237,7 @@ TEST_F(RadiosityGpuTest, AgreesWithThePathTracerAndWithGather) {
     auto crossVsGather = compareImages(images["radiosity-cross"], images["radiosity-gather"]);
     RecordProperty("incremental_vs_pr_relMse", std::to_string(incVsPr->relMse));
     RecordProperty("cross_vs_gather_relMse", std::to_string(crossVsGather->relMse));
-    EXPECT_LT(incVsPr->relMse, 0.01);
+    EXPECT_LT(incVsPr->relMse, 0.005);  // measured 0.0002: the order of shots and the threshold
     EXPECT_LT(crossVsGather->relMse, 0.05);
 }
 

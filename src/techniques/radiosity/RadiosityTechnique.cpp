@@ -81,7 +81,7 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
 }
 
 void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
-    m_frameShooters = m_frameIterations = 0;
+    m_frameShooters = m_frameIterations = m_frameMovingPatches = 0;
     m_system->resetCounters();
     {
         auto s = ctx.timers.scope("radiosity.solve");
@@ -100,6 +100,7 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     ctx.counters["iterations"] = m_frameIterations;
     ctx.counters["converged"] = m_converged ? 1.0 : 0.0;
     ctx.counters["movingElements"] = static_cast<double>(m_system->movingElementCount());
+    ctx.counters["movingPatches"] = m_frameMovingPatches;
 }
 
 std::vector<ShooterRect> RadiosityTechnique::subdivide(uint32_t quad, float flux) const {

@@ -27,6 +27,7 @@ public:
     uint32_t lastHemicubes() const { return m_frameHemicubes; }
     uint32_t lastShooters() const { return m_frameShooters; }
     uint32_t lastIterations() const { return m_frameIterations; }
+    uint32_t lastMovingPatches() const { return m_frameMovingPatches; }
     bool lastConverged() const { return m_converged; }
 
 protected:
@@ -58,6 +59,7 @@ protected:
     std::string m_view{"bilinear"};
 
     uint32_t m_frameHemicubes = 0, m_frameShooters = 0, m_frameIterations = 0;
+    uint32_t m_frameMovingPatches = 0;  // shooting patches of M in this frame's redistribution
     bool m_converged = false;
     float m_maxEmission = 0.0f;  // brightest emitter radiance (luminance), W/(m^2 sr)
 };

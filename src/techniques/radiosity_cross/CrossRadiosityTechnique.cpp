@@ -48,7 +48,6 @@ void CrossRadiosityTechnique::adjustOptions(SystemOptions& o) const {
 }
 
 void CrossRadiosityTechnique::solve(FrameContext& ctx) {
-    m_framePatches = 0;
     if (!m_initialised) {
         const PatchModel& pm = m_system->patches();
         m_animated.assign(pm.bodyCount(), 0);
@@ -104,7 +103,7 @@ void CrossRadiosityTechnique::redistribute(FrameContext& ctx, bool insert) {
         m_system->reconstruct(RAD_SHOOT_CROSS, RAD_RECEIVERS_STATIC, first, n, insert, ctx.timers);
     }
     m_frameShooters += np;
-    m_framePatches = np;
+    m_frameMovingPatches = np;
 }
 
 }  // namespace bounce

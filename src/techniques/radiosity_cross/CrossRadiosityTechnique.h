@@ -13,7 +13,7 @@ public:
     // other methods, about 10x fewer: a pitch about 3x the others' 0.05 m.
     static constexpr float kDefaultDynamicElementSize = 0.15f;  // metres
 
-    uint32_t lastPatches() const { return m_framePatches; }
+    uint32_t lastPatches() const { return m_frameMovingPatches; }
 
 protected:
     void solve(FrameContext& ctx) override;
@@ -28,7 +28,6 @@ private:
     int m_grid = 4;
     bool m_reprojection = true;
     bool m_initialised = false;
-    uint32_t m_framePatches = 0;
     std::vector<char> m_animated;
 };
 

@@ -62,6 +62,7 @@ void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {
         m_system->reconstruct(RAD_SHOOT_NEG_SHOT, RAD_RECEIVERS_STATIC, first, n, false, ctx.timers);
     }
     m_frameShooters += nm;
+    m_frameMovingPatches = nm;
     // 2. Reset M to its emission.
     m_system->reset(RAD_RECEIVERS_MOVING, true);
     // 3. Every static quad shoots its total: reshooting to M, the four cases to C.
