@@ -293,19 +293,23 @@ void RadiositySystem::reset(int receivers, bool toEmission) {
     barrier();
 }
 
-void RadiositySystem::placeShooterHemicubes(uint32_t role, uint32_t first, uint32_t count, ShooterAt at, bool old) {
+void RadiositySystem::placeRecords(int mode, uint32_t first, uint32_t count, uint32_t recordBase, bool old) {
     bindCommon();
     m_place.use();
-    m_place.set("u_mode", at == ShooterAt::Front ? 1 : 2);
+    m_place.set("u_mode", mode);
     m_place.set("u_first", first);
     m_place.set("u_count", count);
-    m_place.set("u_recordBase", role * kBatch);
+    m_place.set("u_recordBase", recordBase);
     m_place.set("u_old", old ? 1 : 0);
     m_place.set("u_offset", m_offset);
     m_place.set("u_near", 0.5f * m_offset);
     m_place.set("u_rotate", m_options.randomRotation ? 1 : 0);
     gl::Program::dispatch(static_cast<int>(count), 1, 1, 64);
     barrier();
+}
+
+void RadiositySystem::placeShooterHemicubes(uint32_t role, uint32_t first, uint32_t count, ShooterAt at, bool old) {
+    placeRecords(at == ShooterAt::Front ? 1 : 2, first, count, role * kBatch, old);
 }
 
 void RadiositySystem::renderHemicubes(render::SceneDrawer& drawer, HemicubeKind kind, uint32_t role, uint32_t count, bool old,
@@ -389,18 +393,7 @@ void RadiositySystem::gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& ti
     const int R = m_options.hemicubeSize;
     for (uint32_t first = 0; first < elements; first += kBatch) {
         const uint32_t count = std::min(kBatch, elements - first);
-        bindCommon();
-        m_place.use();
-        m_place.set("u_mode", 0);
-        m_place.set("u_first", first);
-        m_place.set("u_count", count);
-        m_place.set("u_recordBase", 0u);
-        m_place.set("u_old", 0);
-        m_place.set("u_offset", m_offset);
-        m_place.set("u_near", 0.5f * m_offset);
-        m_place.set("u_rotate", m_options.randomRotation ? 1 : 0);
-        gl::Program::dispatch(static_cast<int>(count), 1, 1, 64);
-        barrier();
+        placeRecords(0, first, count, 0, false);
         renderHemicubes(drawer, HemicubeKind::Radiosity, 0, count, false, render::DrawFilter::All, timers);
         auto scope = timers.scope("radiosity.integrate");
         bindCommon();

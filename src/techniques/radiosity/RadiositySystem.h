@@ -100,6 +100,8 @@ public:
 
 private:
     void bindCommon() const;
+    // Hemicube records [recordBase, + count) at elements (mode 0) or shooters' fronts (1) / backs (2).
+    void placeRecords(int mode, uint32_t first, uint32_t count, uint32_t recordBase, bool old);
     std::vector<glm::vec3> readAtlas(const gl::Texture& t) const;
 
     PatchModel m_model;

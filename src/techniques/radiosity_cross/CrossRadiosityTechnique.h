@@ -10,7 +10,7 @@ public:
     CrossRadiosityTechnique() { m_dynamicElementSize = kDefaultDynamicElementSize; }
     // Coarser elements on the moving object: each is its own patch with four hemicubes (sec. 4.5.1,
     // no substructuring for M). The thesis's boxes have 52-90 CR elements against 318-918 for the
-    // other methods, about 10x fewer: a pitch about 3x the others' 0.05 m.
+    // other methods, 3.5-10x fewer; 0.15 m gives the rotating box 54 patches (165 elements at 0.05 m).
     static constexpr float kDefaultDynamicElementSize = 0.15f;  // metres
 
     uint32_t lastPatches() const { return m_frameMovingPatches; }
