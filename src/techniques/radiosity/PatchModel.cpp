@@ -61,6 +61,21 @@ glm::mat4 lightFrame(const Light& light) {
                      glm::vec4(light.position, 1.0f));
 }
 
+void PatchModel::addElements(Quad& q, const std::function<glm::vec3(glm::vec2)>& albedo) {
+    q.firstElement = static_cast<uint32_t>(m_elements.size());
+    const auto quad = static_cast<uint32_t>(&q - m_quads.data());
+    for (int j = 0; j < q.nv; ++j)
+        for (int i = 0; i < q.nu; ++i) {
+            Element el;
+            el.quad = quad;
+            el.i = i;
+            el.j = j;
+            el.albedo = albedo(texelParam(q, i, j));
+            el.emission = q.emission;
+            m_elements.push_back(el);
+        }
+}
+
 glm::vec3 PatchModel::pointAt(const Quad& q, glm::vec2 st) {
     const float s = st.x, t = st.y;
     if (q.map == QuadMap::Triangle || s + t <= 1.0f) return q.p[0] + s * (q.p[1] - q.p[0]) + t * (q.p[3] - q.p[0]);
@@ -240,17 +255,7 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
                 if (q.map == QuadMap::Triangle || st.x + st.y <= 1.0f) return uv[0] + st.x * (uv[1] - uv[0]) + st.y * (uv[3] - uv[0]);
                 return uv[2] + (1.0f - st.x) * (uv[3] - uv[2]) + (1.0f - st.y) * (uv[1] - uv[2]);
             };
-            added.firstElement = static_cast<uint32_t>(pm.m_elements.size());
-            for (int j = 0; j < q.nv; ++j)
-                for (int i = 0; i < q.nu; ++i) {
-                    Element el;
-                    el.quad = static_cast<uint32_t>(pm.m_quads.size() - 1);
-                    el.i = i;
-                    el.j = j;
-                    el.albedo = albedoAt(scene, mat, uvAt(texelParam(q, i, j)));
-                    el.emission = mat.emission;
-                    pm.m_elements.push_back(el);
-                }
+            pm.addElements(added, [&](glm::vec2 st) { return albedoAt(scene, mat, uvAt(st)); });
             if (pm.m_elements.size() > opt.maxElements)
                 return makeError("more than {} radiosity elements (object '{}'): raise elementSize (now {} m) or "
                                  "dynamicElementSize (now {} m)",
@@ -276,17 +281,8 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
         q.flags = RAD_QUAD_EMITTER | RAD_QUAD_LIGHT;
         q.nu = texelsAlong(glm::length(l.edgeU), opt.elementSize);
         q.nv = texelsAlong(glm::length(l.edgeV), opt.elementSize);
-        q.firstElement = static_cast<uint32_t>(pm.m_elements.size());
         pm.m_quads.push_back(q);
-        for (int j = 0; j < q.nv; ++j)
-            for (int i = 0; i < q.nu; ++i) {
-                Element el;
-                el.quad = static_cast<uint32_t>(pm.m_quads.size() - 1);
-                el.i = i;
-                el.j = j;
-                el.emission = l.radiance;
-                pm.m_elements.push_back(el);
-            }
+        pm.addElements(pm.m_quads.back(), [](glm::vec2) { return glm::vec3(0.0f); });  // emitters reflect nothing
         ++pm.m_lightQuads;
     }
     if (pm.m_quads.empty()) return makeError("the scene has no surface of non-zero area");

@@ -27,6 +27,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace bounce::radiosity {
@@ -98,6 +99,9 @@ public:
     }
 
 private:
+    // Appends quad q's nu x nv elements (q is in m_quads), albedo at each texel's (s, t).
+    void addElements(Quad& q, const std::function<glm::vec3(glm::vec2)>& albedo);
+
     std::vector<Quad> m_quads;
     std::vector<Element> m_elements;
     std::vector<TriangleRef> m_triangles;
