@@ -179,7 +179,7 @@ uniform int u_resolution;
 uniform int u_samples;
 uniform int u_topLevel;
 // u_mode 0: B_e = E_e + rho_e sum, Bu_e = 0 at the record's element (gather); 1: B_s += rho_s sum
-// at the record's shooter's single element (GATHERRADIOSITY); 2: only the sum into u_stats.
+// at the record's shooter's single element (GATHERRADIOSITY).
 shared vec3 s_acc[256];
 void main() {
     uint slot = gl_WorkGroupID.x;
@@ -214,8 +214,6 @@ void main() {
     if (gl_LocalInvocationID.x != 0u) return;
     vec3 sum = s_acc[0];
     uint record = u_recordBase + slot;
-    u_stats[record] = vec4(sum, 0.0);
-    if (u_mode == 2) return;
     uint ei;
     if (u_mode == 0) {
         ei = u_hemicubes[record].info.x;

@@ -151,9 +151,9 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
 
     // Hemicubes.
     const int R = opt.hemicubeSize, Rb = opt.backSize, layers = static_cast<int>(5 * kBatch);
-    s.m_deltaTable = deltaFormFactors(R);
+    const std::vector<float> deltaTable = deltaFormFactors(R);
     s.m_deltaFF = arrayTexture("radiosity.deltaFF", GL_R32F, R, 5, GL_NEAREST);
-    glTextureSubImage3D(s.m_deltaFF.id(), 0, 0, 0, 0, R, R, 5, GL_RED, GL_FLOAT, s.m_deltaTable.data());
+    glTextureSubImage3D(s.m_deltaFF.id(), 0, 0, 0, 0, R, R, 5, GL_RED, GL_FLOAT, deltaTable.data());
     s.m_idA = arrayTexture("radiosity.hemicube.idOld", GL_R32UI, R, layers, GL_NEAREST);
     s.m_idB = arrayTexture("radiosity.hemicube.idNew", GL_R32UI, R, layers, GL_NEAREST);
     s.m_shot = arrayTexture("radiosity.hemicube.shot", GL_RGBA16F, R, layers, GL_NEAREST);
@@ -576,11 +576,5 @@ std::vector<glm::vec3> RadiositySystem::readAtlas(const gl::Texture& t) const {
 
 std::vector<glm::vec3> RadiositySystem::readTotal() const { return readAtlas(m_total); }
 std::vector<glm::vec3> RadiositySystem::readUnshot() const { return readAtlas(m_unshot); }
-
-std::vector<glm::vec4> RadiositySystem::readStats(size_t count) const {
-    std::vector<glm::vec4> v(count);
-    m_stats.download(0, count * sizeof(glm::vec4), v.data());
-    return v;
-}
 
 }  // namespace bounce::radiosity

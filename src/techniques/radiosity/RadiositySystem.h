@@ -90,12 +90,8 @@ public:
     // Tests: element radiosity B and Bu read back (one per element, in element order).
     std::vector<glm::vec3> readTotal() const;
     std::vector<glm::vec3> readUnshot() const;
-    // Tests: integrate a constant-white radiosity hemicube (delta form factors' sum, ~1).
-    std::vector<float> deltaFormFactorTable() const { return m_deltaTable; }
-    std::vector<glm::vec4> readStats(size_t count) const;
     uint32_t hemicubesRendered() const { return m_hemicubes; }
     void resetCounters() { m_hemicubes = 0; }
-    uint32_t maxShooters() const { return m_maxShooters; }
     float emittedPower() const { return m_emittedPower; }  // sum of A E luminance over emitters
 
 private:
@@ -109,7 +105,6 @@ private:
     float m_far = 100.0f, m_offset = 1e-3f;
     float m_emittedPower = 0.0f;
     uint32_t m_maxShooters = 0, m_hemicubes = 0;
-    std::vector<float> m_deltaTable;
     std::vector<gpu::ObjectGpu> m_objectData;
     std::vector<gpu::RadBodyGpu> m_bodies, m_bodiesOld;
     std::vector<char> m_moving;

@@ -25,10 +25,8 @@ public:
     radiosity::RadiositySystem& system() { return *m_system; }
     // Per-frame work of the last frame.
     uint32_t lastHemicubes() const { return m_frameHemicubes; }
-    uint32_t lastShooters() const { return m_frameShooters; }
     uint32_t lastIterations() const { return m_frameIterations; }
     uint32_t lastMovingPatches() const { return m_frameMovingPatches; }
-    bool lastConverged() const { return m_converged; }
 
 protected:
     // One frame of the method: update the solution in the system's atlas.
