@@ -49,7 +49,11 @@ struct LightGpu {
     mat4 shadowClipFromWorld;  // 2D shadow maps
     vec4 shadowParams;         // x: far distance of cube distance maps, y: map size, z: PCF radius (texels)
     vec4 shadowOrigin;         // xyz: centre of the cube distance map (area lights: just off the emitter)
+    vec4 area;                 // area lights: rgb radiance W/(m^2 sr) before the texture (emission.rgb is
+                               // radiance times the texture's mean); w: flags AREA_TEXTURED | AREA_TWO_SIDED
 };
+#define AREA_TEXTURED 1
+#define AREA_TWO_SIDED 2
 
 struct FrameUniforms {
     mat4 clipFromWorld;
@@ -64,7 +68,7 @@ struct FrameUniforms {
 static_assert(sizeof(ObjectGpu) == 144);
 static_assert(sizeof(MaterialGpu) == 48);
 static_assert(sizeof(ViewUniforms) == 160);
-static_assert(sizeof(LightGpu) == 176);
+static_assert(sizeof(LightGpu) == 192);
 static_assert(sizeof(FrameUniforms) == 240);
 }  // namespace bounce::gpu
 #endif

@@ -35,6 +35,7 @@
 #define BINDING_TEX_GBUF_EMISSION 4
 #define BINDING_TEX_SHADOW 5      // the current light's shadow map (2D)
 #define BINDING_TEX_SHADOW_CUBE 6 // the current light's cube shadow map (point, area)
+#define BINDING_TEX_AREA_LIGHT 7  // the current area light's emission texture (mipmapped; 1x1 white if none)
 #define BINDING_TEX_INPUT0 8      // generic inputs of full-screen passes
 #define BINDING_TEX_INPUT1 9
 #define BINDING_TEX_INPUT2 10

@@ -2,6 +2,7 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "scene/AreaTexture.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -48,6 +49,10 @@ gpu::LightGpu toGpu(const Light& l) {
     g.edgeU = glm::vec4(l.edgeU, 0.0f);
     g.edgeV = glm::vec4(l.edgeV, 0.0f);
     g.shadowClipFromWorld = glm::mat4(1.0f);
+    if (l.type == LightType::Area) {
+        const float flags = (l.texture.textured() ? AREA_TEXTURED : 0) | (l.twoSided ? AREA_TWO_SIDED : 0);
+        g.area = glm::vec4(l.radiance, flags);
+    }
     return g;
 }
 
@@ -68,6 +73,9 @@ Expected<LightSet> LightSet::create() {
     const float one = 1.0f;
     glClearTexImage(s.m_dummy2D.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
     glClearTexImage(s.m_dummyCube.id(), 0, GL_RED, GL_FLOAT, &one);
+    s.m_white = gl::Texture::create2D("light.areaTexture.white", 1, 1, GL_RGBA32F);
+    const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    glClearTexImage(s.m_white.id(), 0, GL_RGBA, GL_FLOAT, white);
     return s;
 }
 
@@ -76,6 +84,45 @@ void LightSet::bind(size_t i) const {
     e.ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_LIGHT);
     (e.gpu.edgeU.w == kCube ? e.distance : m_dummyCube).bind(BINDING_TEX_SHADOW_CUBE);
     (e.gpu.edgeU.w == k2D ? e.depth : m_dummy2D).bind(BINDING_TEX_SHADOW);
+    areaTexture(i).bind(BINDING_TEX_AREA_LIGHT);
+}
+
+const gl::Texture& LightSet::areaTexture(size_t i) const {
+    const Entry& e = m_entries[i];
+    return e.emission ? e.emission : m_white;
+}
+
+void LightSet::updateAreaTexture(Entry& e, const Scene& scene, const Light& light, float time) {
+    if (light.type != LightType::Area || !light.texture.textured()) {
+        e.emission = gl::Texture();
+        e.emissionKey = -1;
+        e.emissionMean = glm::vec3(1.0f);
+        return;
+    }
+    const int64_t key = light.texture.kind == AreaTexture::Kind::Images
+                            ? static_cast<int64_t>(areaTextureFrame(light.texture, time))
+                            : -1 - static_cast<int64_t>(std::llround(static_cast<double>(time) * 1e6));
+    if (e.emission && key == e.emissionKey) return;
+    Image scratch;
+    const Image* image = areaTextureAt(scene, light, time, scratch);
+    BOUNCE_CHECK(image != nullptr && !image->empty(), "textured area light has an image");
+    const int w = image->width(), h = image->height();
+    if (!e.emission || e.emission.width() != w || e.emission.height() != h) {
+        int levels = 1;
+        while ((std::max(w, h) >> levels) > 0) ++levels;
+        e.emission = gl::Texture::create2D("light.areaTexture", w, h, GL_RGBA32F, levels);
+        e.emission.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+    }
+    // GL row 0 is t = 0, the image's last row (Scene.h: image row 0 is v = 1).
+    std::vector<glm::vec4> texels(static_cast<size_t>(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            texels[static_cast<size_t>(y) * w + x] = glm::vec4(image->at(x, h - 1 - y), 1.0f);
+    glTextureSubImage2D(e.emission.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, texels.data());
+    e.emission.generateMipmaps();
+    e.emissionKey = key;
+    e.emissionMean = imageMean(*image);
+    ++m_areaTextureUploads;
 }
 
 void LightSet::bindShadowMaps(size_t i, unsigned unit2D, unsigned unitCube) const {
@@ -101,6 +148,9 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
         const Light& light = lights[i];
         Entry& e = m_entries[i];
         gpu::LightGpu g = toGpu(light);
+        updateAreaTexture(e, scene.scene(), light, scene.time());
+        if (light.type == LightType::Area)  // what untextured shading of this light sees: the mean radiance
+            g.emission = glm::vec4(light.radiance * e.emissionMean, g.emission.w);
         const bool wideSpot = light.type == LightType::Spot && light.cutoffAngle > kMaxPerspectiveSpotAngle;
         const bool cube = light.type == LightType::Point || light.type == LightType::Area || wideSpot;
         // Cube maps of area lights sit a hair in front of the emitter so it does not shadow itself.

@@ -10,6 +10,7 @@
 #include "render/RenderSettings.h"
 #include "render/SceneDrawer.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace bounce::render {
@@ -29,6 +30,13 @@ public:
     // distance map (or a dummy) at unitCube, so a pass can sample several lights at once.
     void bindShadowMaps(size_t i, unsigned unit2D, unsigned unitCube) const;
     size_t mapsRendered() const { return m_mapsRendered; }
+    // Light i's emission texture (area lights, Scene.h AreaTexture) at the current time: RGBA32F with
+    // a full mip chain and trilinear filtering, addressed (u, v) as the scene model (no flip needed); a
+    // 1x1 white texture for an untextured light. Also bound at BINDING_TEX_AREA_LIGHT by bind(i).
+    const gl::Texture& areaTexture(size_t i) const;
+    // Changes whenever a light's texture shows a new image (a sequence's next frame, the bouncing
+    // square moving), so that a technique can tell a dynamic light texture from a still one.
+    uint64_t areaTextureUploads() const { return m_areaTextureUploads; }
 
 private:
     struct Entry {
@@ -40,12 +48,17 @@ private:
         int size = 0;
         Light rendered;         // the light state the map was rendered for
         bool valid = false;
+        gl::Texture emission;   // area light texture (empty: untextured)
+        int64_t emissionKey = -1;  // the frame it shows (sequences) or -1 - time in microseconds (procedural)
+        glm::vec3 emissionMean{1.0f};  // mean texel of `emission` (1: untextured)
     };
+    void updateAreaTexture(Entry& e, const Scene& scene, const Light& light, float time);
     gl::Program m_depthProgram, m_distanceProgram;
     // Bound to the shadow unit a light does not use, so both samplers always see a complete texture
     // of their type.
-    gl::Texture m_dummy2D, m_dummyCube;
+    gl::Texture m_dummy2D, m_dummyCube, m_white;
     std::vector<Entry> m_entries;
+    uint64_t m_areaTextureUploads = 0;
     size_t m_mapsRendered = 0;
 };
 

@@ -89,7 +89,7 @@ glm::vec3 Light::flux() const {
             const float solid = 2.0f * pi * (1.0f - std::pow(c, n + 1.0f)) / (n + 1.0f);
             return intensity * solid;
         }
-        case LightType::Area: return pi * radiance * area();
+        case LightType::Area: return (twoSided ? 2.0f : 1.0f) * pi * radiance * area();
         case LightType::Directional: return glm::vec3(0.0f);
     }
     return glm::vec3(0.0f);

@@ -90,11 +90,36 @@ struct Object {
 
 enum class LightType { Point, Spot, Directional, Area };
 
+// Emission texture of a rectangular area light (Nichols 2010 ch. 5: video screens as lights). The
+// light emits radiance * texture(u, v) at position + (u - 1/2) edgeU + (v - 1/2) edgeV, u, v in [0, 1].
+// Image column 0 is u = 0 and image row 0 is v = 1, so seen from the emitting side (edgeU to the right,
+// edgeV up) the picture is upright and not mirrored. Texel values are linear multipliers (a PNG is
+// decoded from sRGB). See scene/AreaTexture.h for evaluating it at a time.
+struct AreaTexture {
+    enum class Kind { None, Images, BouncingSquare };
+    Kind kind = Kind::None;
+    // Images: indices into Scene::textures, all the same size; one is a still picture, several are a
+    // sequence shown at frameRate frames per second, looping.
+    std::vector<uint32_t> frames;
+    float frameRate = 24.0f;
+    // BouncingSquare: the thesis's pathological test video (section 5.4.7, Fig. 5.15), a white square of
+    // side squareSize (fraction of the light's sides) on black, moving at squareVelocity (light sides
+    // per second) and reflecting off the edges, starting at squareStart (its centre, in u, v);
+    // rasterised with exact coverage at resolution x resolution texels.
+    int resolution = 64;
+    float squareSize = 0.25f;
+    glm::vec2 squareVelocity{0.35f, 0.22f};
+    glm::vec2 squareStart{0.3f, 0.6f};
+
+    bool textured() const { return kind != Kind::None; }
+    bool animated() const { return kind == Kind::BouncingSquare || (kind == Kind::Images && frames.size() > 1); }
+};
+
 // Spot: I(alpha) = intensity * cos(alpha)^falloffExponent for alpha < cutoffAngle, else 0,
 // alpha measured from `direction` (the cosine-power spot the papers use; exponent 1 and cutoff 90 deg
 // is Laine et al.'s "180 degree cosine spot", whose flux is pi * intensity).
 // Area: rectangle centred at `position` with full edge vectors `edgeU`, `edgeV`; it emits `radiance`
-// from the side of normalize(cross(edgeU, edgeV)) only.
+// (times its texture, if any) from the side of normalize(cross(edgeU, edgeV)), or from both sides.
 struct Light {
     std::string name;
     LightType type = LightType::Point;
@@ -107,6 +132,8 @@ struct Light {
     float falloffExponent = 1.0f;            // spot cosine power
     glm::vec3 edgeU{1.0f, 0.0f, 0.0f};       // area light edges (metres)
     glm::vec3 edgeV{0.0f, 0.0f, 1.0f};
+    AreaTexture texture;                     // area: emission multiplier over the rectangle
+    bool twoSided = false;                   // area: emits from both faces (the back is mirrored in u)
     TransformTrack animation;                // moves position, direction and edges
 
     bool isDynamic() const { return !animation.empty(); }
@@ -115,7 +142,8 @@ struct Light {
     glm::vec3 areaNormal() const;
     float area() const;
     // Total emitted flux in W (per channel): point 4*pi*I, spot integral of I over its cone,
-    // area pi*L*A, directional has none (infinite) and returns 0.
+    // area pi*L*A per emitting side (an area light's texture multiplies this by its mean,
+    // areaTextureMean in scene/AreaTexture.h), directional has none (infinite) and returns 0.
     glm::vec3 flux() const;
 };
 

@@ -41,7 +41,7 @@ struct VctUniforms {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(VctUniforms) == 128 + 6 * 16 + VCT_MAX_LIGHTS * 176);
+static_assert(sizeof(VctUniforms) == 128 + 6 * 16 + VCT_MAX_LIGHTS * sizeof(LightGpu));
 }  // namespace bounce::gpu
 #endif
 
