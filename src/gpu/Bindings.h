@@ -8,6 +8,7 @@
 #define BINDING_UBO_VIEW 1     // ViewUniforms: the view a SceneDrawer pass renders from
 #define BINDING_UBO_LIGHT 2    // LightUniforms: one light for a shading or shadow pass
 #define BINDING_UBO_PASS 3     // per-pass parameters owned by a technique
+#define BINDING_UBO_VOXELS 4   // ScreenVoxelsGpu: the screen-space voxel grid (techniques/screen_voxels)
 
 // Shader storage buffers
 #define BINDING_SSBO_OBJECTS 0    // ObjectGpu[]: worldFromObject, normal matrix, material index
@@ -51,6 +52,9 @@
 #define BINDING_TEX_VCT_VOLUME0 17   // aniso faces 17..22, SH-F32 coefficients 17..28, SH-U8 17..19
 #define BINDING_TEX_VCT_SHADOW2D0 24 // voxelizer: light k's 2D shadow map at 24 + k (k < 4)
 #define BINDING_TEX_VCT_SHADOWCUBE0 28 // voxelizer: light k's cube distance map at 28 + k
+// Screen-space binary voxels (techniques/screen_voxels): usampler2DArray, one layer per 128 bits. Unit 16
+// is also vct's; the two are never bound in one pass.
+#define BINDING_TEX_VOXELS 16
 
 // Image units
 #define BINDING_IMG0 0
