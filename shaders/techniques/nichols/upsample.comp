@@ -1,12 +1,15 @@
 // Coarse-to-fine, empty-aware upsampling and combination (Nichols 2010 §3.2.5, checklist item 6),
 // one level per dispatch from the coarsest down to 0. A cell of level k "has data" if it was rendered
 // at k (atlas alpha) or lies under a coarser cell with data (parent result, nearest). Its value is
-// rendered + inherited (disjoint sets). An inherited cell becomes the (1,2,1)x(1,2,1) tent-weighted
+// rendered + inherited: splatting (multires-splat) adds each VPL's light at its own levels, and the
+// one-pass stencil renders every pixel at one level, so the sets are disjoint there. With
+// u_replaceInherited (area-light's incremental stencil, §5.3.4, re-renders finer cells under coarse
+// ones that were already lit) the rendered value replaces the inherited one. An inherited cell becomes the (1,2,1)x(1,2,1) tent-weighted
 // average of the 3x3 neighbours that have data (weights are an assumption; the thesis does not give
 // them); a cell rendered at this level keeps its value (deviation: the thesis's pseudo-code filters it
 // too, which blurs full-resolution results across edges). Output only where the cell has data, so
 // energy never crosses into or out of empty cells.
-// Host uniforms: u_level, u_levelOrigin, u_size, u_parentSize, u_hasParent.
+// Host uniforms: u_level, u_levelOrigin, u_size, u_parentSize, u_hasParent, u_replaceInherited.
 // Inputs: atlas (BINDING_TEX_TECH0), result of level k+1 (BINDING_TEX_TECH1, lod k+1).
 // Output: result of level k (image BINDING_IMG0, rgba32f 2D array mip k; alpha 1 = has data).
 #include "techniques/nichols/atlas.glsl"
@@ -17,10 +20,12 @@ layout(rgba32f, binding = BINDING_IMG0) writeonly uniform image2DArray i_result;
 uniform ivec2 u_size;
 uniform ivec2 u_parentSize;
 uniform bool u_hasParent;
+uniform bool u_replaceInherited;
 
 vec4 cellValue(ivec2 c) {
     vec4 rendered = texelFetch(s_atlas, u_levelOrigin + c, 0);
     vec4 inherited = u_hasParent ? texelFetch(s_parent, ivec3(min(c / 2, u_parentSize - 1), 0), u_level + 1) : vec4(0.0);
+    if (u_replaceInherited) return rendered.a > 0.5 ? vec4(rendered.rgb, 1.0) : inherited;
     return vec4(rendered.rgb + inherited.rgb, max(rendered.a, inherited.a));
 }
 

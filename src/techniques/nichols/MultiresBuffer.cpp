@@ -103,32 +103,67 @@ void MultiresBuffer::stencilSetup(const MinMaxPyramid& pyramid) {
 std::vector<double> MultiresBuffer::drawStencilled(gl::Program& program, int batches,
                                                    const std::function<void(int)>& setBatch) {
     std::vector<double> fragments(static_cast<size_t>(levels()), 0.0);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    forEachLevel(program, [&](int k) {
-        // The atlas starts at zero (begin()), so adding every batch, the first included, is the sum.
-        if (batches > 1) {
-            glEnable(GL_BLEND);
-            glBlendEquation(GL_FUNC_ADD);
-            glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ZERO);
-        }
-        for (int b = 0; b < batches; ++b) {
-            if (setBatch) setBatch(b);
-            // Every batch shades the same stencilled fragments: count them once.
-            if (b == 0) glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            if (b == 0) glEndQuery(GL_SAMPLES_PASSED);
-            // llvmpipe queues draws until a flush: one unit of work per batch, as a watchdog needs.
-            if (batches > 1) glFlush();
-        }
-        GLuint64 samples = 0;
-        glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &samples);
-        fragments[static_cast<size_t>(k)] = static_cast<double>(samples);
-        glDisable(GL_BLEND);
-    });
-    glDisable(GL_STENCIL_TEST);
+    for (int k = 0; k < levels(); ++k) fragments[static_cast<size_t>(k)] = drawLevel(k, program, 1, batches, setBatch);
     return fragments;
+}
+
+void MultiresBuffer::stencilLevel(int level, gl::Program& program, int ref) {
+    m_atlasFbo.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    gl::Context::current()->bindEmptyVertexArray();
+    const glm::ivec2 o = levelOrigin(level), s = levelSize(level);
+    glViewport(o.x, o.y, s.x, s.y);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, ref, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glStencilMask(0xFF);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    program.set("u_level", level);
+    program.set("u_levelOrigin", o);
+    program.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_STENCIL_TEST);
+}
+
+double MultiresBuffer::drawLevel(int level, gl::Program& program, int ref, int batches,
+                                 const std::function<void(int)>& setBatch) {
+    m_atlasFbo.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    gl::Context::current()->bindEmptyVertexArray();
+    const glm::ivec2 o = levelOrigin(level), s = levelSize(level);
+    glViewport(o.x, o.y, s.x, s.y);
+    program.set("u_level", level);
+    program.set("u_levelOrigin", o);
+    program.use();
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, ref, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    // The atlas starts at zero (begin()), so adding every batch, the first included, is the sum.
+    if (batches > 1) {
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ZERO);
+    }
+    for (int b = 0; b < batches; ++b) {
+        if (setBatch) {
+            setBatch(b);
+            program.use();
+        }
+        // Every batch shades the same stencilled fragments: count them once.
+        if (b == 0) glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (b == 0) glEndQuery(GL_SAMPLES_PASSED);
+        // llvmpipe queues draws until a flush: one unit of work per batch, as a watchdog needs.
+        if (batches > 1) glFlush();
+    }
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &samples);
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+    return static_cast<double>(samples);
 }
 
 void MultiresBuffer::bindAtlas() {
@@ -137,22 +172,25 @@ void MultiresBuffer::bindAtlas() {
 }
 
 void MultiresBuffer::upsample() {
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    for (int k = levels() - 1; k >= 0; --k) upsampleLevel(k);
+}
+
+void MultiresBuffer::upsampleLevel(int k, bool replaceInherited) {
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     m_atlas.bind(BINDING_TEX_TECH0);
     m_result.bind(BINDING_TEX_TECH1);
-    for (int k = levels() - 1; k >= 0; --k) {
-        const glm::ivec2 s = levelSize(k);
-        m_result.bindImage(BINDING_IMG0, GL_WRITE_ONLY, k, true);
-        m_upsample.set("u_level", k);
-        m_upsample.set("u_levelOrigin", levelOrigin(k));
-        m_upsample.set("u_size", s);
-        m_upsample.set("u_parentSize", k + 1 < levels() ? levelSize(k + 1) : s);
-        m_upsample.set("u_hasParent", k + 1 < levels() ? 1 : 0);
-        m_upsample.use();
-        glDispatchCompute(static_cast<GLuint>((s.x + kLocalSize - 1) / kLocalSize),
-                          static_cast<GLuint>((s.y + kLocalSize - 1) / kLocalSize), 1);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
+    const glm::ivec2 s = levelSize(k);
+    m_result.bindImage(BINDING_IMG0, GL_WRITE_ONLY, k, true);
+    m_upsample.set("u_level", k);
+    m_upsample.set("u_levelOrigin", levelOrigin(k));
+    m_upsample.set("u_size", s);
+    m_upsample.set("u_parentSize", k + 1 < levels() ? levelSize(k + 1) : s);
+    m_upsample.set("u_hasParent", k + 1 < levels() ? 1 : 0);
+    m_upsample.set("u_replaceInherited", replaceInherited ? 1 : 0);
+    m_upsample.use();
+    glDispatchCompute(static_cast<GLuint>((s.x + kLocalSize - 1) / kLocalSize),
+                      static_cast<GLuint>((s.y + kLocalSize - 1) / kLocalSize), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha) {

@@ -33,6 +33,21 @@ public:
     glm::ivec2 atlasSize() const { return m_atlasSize; }
     // Coarse-to-fine upsampling (§3.2.5) into result() level 0.
     void upsample();
+
+    // One level at a time, for techniques that build the stencil of level k from what levels > k
+    // computed (Nichols 2010 §5.3.4, incremental stencil rendering), coarsest first:
+    // stencilLevel writes `ref` into the stencil where `program` (full-screen-triangle vertex stage,
+    // u_level and u_levelOrigin set) does not discard, colour writes off, over level k's rectangle.
+    void stencilLevel(int level, gl::Program& program, int ref);
+    // drawLevel draws `program` over level k where the stencil equals `ref`, `batches` times with
+    // additive blending as drawStencilled does; returns the fragments that passed (counted once).
+    double drawLevel(int level, gl::Program& program, int ref, int batches = 1,
+                     const std::function<void(int)>& setBatch = {});
+    // upsampleLevel computes result() level k from the atlas level k and result() level k + 1; after
+    // it, result() level k holds every covered cell of level k that has data. replaceInherited: a cell
+    // rendered at k takes its rendered value only (else rendered + inherited, see upsample.comp).
+    void upsampleLevel(int level, bool replaceInherited = false);
+    const gl::Texture& depthStencil() const { return m_depthStencil; }
     // indirect = albedo / pi * result level 0, times Eq. 3.3's detail term when detailAlpha > 0.
     void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha = 0.0f);
 
