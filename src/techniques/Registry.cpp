@@ -8,6 +8,7 @@
 #include "techniques/multires_splat/MultiresSplatTechnique.h"
 #include "techniques/rsm/RsmTechnique.h"
 #include "techniques/photon_splat/PhotonSplatTechnique.h"
+#include "techniques/area_light/AreaLightTechnique.h"
 #include "techniques/radiosity_cross/CrossRadiosityTechnique.h"
 #include "techniques/radiosity_gather/GatherRadiosityTechnique.h"
 #include "techniques/radiosity_incremental/IncrementalRadiosityTechnique.h"
@@ -41,6 +42,8 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
          "van de Hoef 2013 MSc thesis; Chen 1990; George et al. 1990", [] { return std::make_unique<IncrementalRadiosityTechnique>(); }},
         {"radiosity-cross", "cross redistribution radiosity: four hemicubes per moving patch, cross projection through back hemicubes (van de Hoef 2013 Alg. 4.4/4.5)",
          "van de Hoef 2013 MSc thesis", [] { return std::make_unique<CrossRadiosityTechnique>(); }},
+        {"area-light", "multiresolution textured area lights: VPLs on the light texture, screen-space voxel visibility with incremental bitstreams, incremental stencil rendering (Nichols 2010 ch. 5; direct light only)",
+         "Nichols 2010 thesis ch. 5; Nichols, Penmatsa & Wyman, UICS-10-01", [] { return std::make_unique<AreaLightTechnique>(); }},
         {"hisr", "hierarchical image-space radiosity: per-fragment VPL-tree traversal (Nichols 2010 ch. 4.2.4)", "Nichols 2010 thesis ch. 4; Nichols, Shopf & Wyman 2009", [] { return std::make_unique<HisrTechnique>(); }},
     };
     return list;

@@ -79,6 +79,7 @@ void ScreenVoxels::build(render::SceneDrawer& drawer, const render::View& camera
     glDisable(GL_BLEND);
     glEnable(GL_COLOR_LOGIC_OP);
     glLogicOp(GL_OR);
+    m_program.set("u_footprint", size.footprint ? 1 : 0);
     m_program.use();
     render::View v = camera;
     v.viewport = size.columns;

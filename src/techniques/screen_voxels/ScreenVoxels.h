@@ -15,6 +15,9 @@ namespace bounce::voxels {
 struct GridSize {
     glm::ivec2 columns{128};  // x/y resolution (thesis: 128^2 .. 1024^2; 128^2 "almost indistinguishable")
     int bits = 128;           // depth bits per column, a multiple of 128 (thesis: 128; "up to 2048")
+    // Each fragment sets every slice its triangle spans within the pixel (bounce's default) instead of
+    // the one slice at the pixel centre (the thesis); see voxelize.frag.
+    bool footprint = true;
 };
 
 // Checks a grid size: columns positive, bits a positive multiple of 128 and at most 128 x the GPU's

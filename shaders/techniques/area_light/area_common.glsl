@@ -1,0 +1,55 @@
+// Shared by the area-light passes (Nichols 2010 ch. 5): the pass uniforms, the VPLs and the culling
+// tests of §5.3.2 that use the light's known position: a receiver that faces away from every corner
+// of a light, or lies behind a one-sided light, gets nothing from it.
+#include "techniques/area_light/area_shared.h"
+layout(std140, binding = BINDING_UBO_PASS) uniform AreaPassBlock { AreaPassUniforms u_pass; };
+
+vec3 lightCorner(AreaLightGpu L, int k) {
+    vec2 c = vec2(k & 1, k >> 1) - 0.5;
+    return L.centre.xyz + c.x * L.edgeU.xyz + c.y * L.edgeV.xyz;
+}
+
+// True when no point of light L can light a receiver at x with normal n (§5.3.2's back-facing test
+// over the corners, and the one-sided test).
+bool culledByLight(AreaLightGpu L, vec3 x, vec3 n) {
+    if (L.centre.w < 0.5 && dot(x - L.centre.xyz, L.normal.xyz) <= 0.0) return true;
+    for (int k = 0; k < 4; ++k)
+        if (dot(n, lightCorner(L, k) - x) > 0.0) return false;
+    return true;
+}
+
+bool culledByAllLights(vec3 x, vec3 n) {
+    for (int i = 0; i < int(u_pass.counts.x); ++i)
+        if (!culledByLight(u_pass.lights[i], x, n)) return false;
+    return true;
+}
+
+// x lies on the emitter of some light (its own G-buffer pixels): no gather there (§5.3.2, "emitter
+// fragments are stenciled out").
+bool onEmitter(vec3 x) {
+    for (int i = 0; i < int(u_pass.counts.x); ++i) {
+        AreaLightGpu L = u_pass.lights[i];
+        vec3 d = x - L.centre.xyz;
+        float size = max(L.edgeU.w, L.edgeV.w);
+        if (abs(dot(d, L.normal.xyz)) > 1e-3 * size) continue;
+        float u = dot(d, L.edgeU.xyz) / (L.edgeU.w * L.edgeU.w), v = dot(d, L.edgeV.xyz) / (L.edgeV.w * L.edgeV.w);
+        if (abs(u) <= 0.5 + 1e-3 && abs(v) <= 0.5 + 1e-3) return true;
+    }
+    return false;
+}
+
+// Emission cosine at the light for direction -l (from the light towards the receiver): one-sided
+// lights emit on the side of their normal, two-sided ones on both.
+float emitterCosine(AreaLightGpu L, vec3 l) {
+    float c = -dot(L.normal.xyz, l);
+    return L.centre.w > 0.5 ? abs(c) : c;
+}
+
+// Where a visibility ray towards a point y on light L ends: u_pass.march.z metres off the emitter,
+// along its normal on the receiver's side. Lights are usually mounted on a wall or ceiling, and a ray
+// that ended on the emitter plane would run its last steps inside that surface's voxels (the origin
+// bias of Fig. 5.12, applied at the light's end too; an assumption).
+vec3 rayEnd(AreaLightGpu L, vec3 y, vec3 x) {
+    float side = dot(x - y, L.normal.xyz) >= 0.0 ? 1.0 : -1.0;
+    return y + side * u_pass.march.z * L.normal.xyz;
+}

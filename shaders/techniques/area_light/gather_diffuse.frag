@@ -1,0 +1,110 @@
+// Diffuse gather from the VPLs on the area lights with incremental voxel visibility (Nichols 2010
+// §5.3.2 Eq. 5.2 with V, §5.3.3.2; checklist items 19-20). A stencilled cell of level k represents the
+// eye-space patch of its covered pixels (mean position and normal, as isr) and sums its VPLs:
+//   E = sum_j L_j A_j V(x -> y_j) cos(x->y_j, N_x) cos(y_j->x, N_y) / |x - y_j|^2
+// (the irradiance: Eq. 5.2's diffuse form without rho / pi, which the final pass applies per pixel).
+// Interleaved sampling (Keller & Heidrich 2001, §5.3.3.2 on 2x2 blocks): with 4 subsets the cell of
+// parity s = (x & 1) + 2 (y & 1) at its level takes VPLs s, s + 4, s + 8, ... and writes their sum;
+// resolve.comp adds the four subsets of a neighbourhood. Visibility per VPL is a bit of the cell's
+// bitstream (one bit per VPL of its subset, 128 per layer of an RGBA32UI atlas array): at the coarsest
+// level every VPL is ray-marched; at finer levels a VPL's bit is reused when the parent level's cells
+// of the same parity in the 3x3 block around the parent agree on it, and re-cast only where they
+// disagree. A VPL the receiver faces away from, or that emits away from it, is not traced (bit 0).
+// One draw handles the 128 VPLs of bitstream layer u_batch (so any VPL count stays within the shader
+// loop budget, gpu/ShaderLimits.h); the host adds the draws (blending).
+// Host uniforms: u_level, u_levelOrigin, u_parentOrigin, u_parentSize, u_coarsest, u_batch, u_shade.
+// Inputs: eye pyramid geometry and normal (BINDING_TEX_TECH0, TECH1), cell flags (TECH2), VPLs
+// (BINDING_SSBO_TECH0), the voxel grid (march.glsl). In/out: bitstreams (image BINDING_IMG0),
+// counters (BINDING_SSBO_TECH1). Output: subset irradiance W/m^2 (alpha 1 = rendered here).
+#include "techniques/nichols/atlas.glsl"
+#include "techniques/area_light/area_common.glsl"
+#include "techniques/screen_voxels/march.glsl"
+// The stencil must cull before this shader runs although it stores to images and buffers (GL would
+// otherwise run it on every fragment and test afterwards). Safe: no discard, no depth output.
+layout(early_fragment_tests) in;
+layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
+layout(binding = BINDING_TEX_TECH2) uniform usampler2D s_flags;
+layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { AreaVplGpu u_vpls[]; };
+layout(std430, binding = BINDING_SSBO_TECH1) buffer StatsBlock { uint u_stats[AL_STAT_COUNT]; };
+layout(rgba32ui, binding = BINDING_IMG0) uniform uimage2DArray i_bits;
+uniform ivec2 u_parentOrigin;
+uniform ivec2 u_parentSize;
+uniform int u_coarsest;
+uniform int u_batch;
+uniform bool u_shade;
+layout(location = 0) out vec4 o_irradiance;
+
+int parity(ivec2 c, int subsets) { return subsets == 4 ? (c.x & 1) + 2 * (c.y & 1) : 0; }
+
+void main() {
+    ivec2 cell = ivec2(gl_FragCoord.xy) - u_levelOrigin;
+    vec4 g = texelFetch(s_geometry, ivec3(cell, 0), u_level);
+    vec3 x = g.xyz / g.w;
+    vec3 n = normalize(texelFetch(s_normal, ivec3(cell, 0), u_level).xyz + vec3(0.0, 0.0, 1e-12));
+    int subsets = int(u_pass.counts.w);
+    int perCell = int(u_pass.counts.z);
+    int s = parity(cell, subsets);
+    int visibility = int(u_pass.march.w);
+    int first = SV_BITS_PER_LAYER * u_batch, end = min(perCell, first + SV_BITS_PER_LAYER);
+
+    // The parent level's verdicts on this layer's VPLs: AND and OR over the same-parity tree cells of
+    // the 3x3 block around the parent.
+    uvec4 anyVisible = uvec4(0u), allVisible = uvec4(0xFFFFFFFFu);
+    int samples = 0;
+    if (visibility == AL_VIS_INCREMENTAL && u_level < u_coarsest) {
+        ivec2 p = min(cell / 2, u_parentSize - 1);
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                ivec2 q = p + ivec2(dx, dy);
+                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_parentSize))) continue;
+                if (parity(q, subsets) != s) continue;
+                if ((texelFetch(s_flags, u_parentOrigin + q, 0).r & AL_CELL_TREE) == 0u) continue;
+                uvec4 b = imageLoad(i_bits, ivec3(u_parentOrigin + q, u_batch));
+                anyVisible |= b;
+                allVisible &= b;
+                ++samples;
+            }
+    }
+    uvec4 agree = samples > 0 ? ~(anyVisible ^ allVisible) : uvec4(0u);
+
+    // Origin bias against self-occlusion ("shadow acne", Fig. 5.12): u_pass.march.z metres along the
+    // normal, and the same distance off the emitter at the VPL's end (rayEnd).
+    vec3 origin = x + n * u_pass.march.z;
+    int steps = int(u_pass.march.x), thickness = int(u_pass.march.y);
+    uvec4 bits = uvec4(0u);
+    vec3 irradiance = vec3(0.0);
+    uint raysCast = 0u, reused = 0u, culled = 0u;
+    for (int m = first; m < end; ++m) {
+        AreaVplGpu v = u_vpls[s + subsets * m];
+        AreaLightGpu L = u_pass.lights[int(v.position.w)];
+        vec3 d = v.position.xyz - x;
+        float r2 = max(dot(d, d), 1e-12);
+        vec3 l = d * inversesqrt(r2);
+        float cosX = dot(n, l), cosY = emitterCosine(L, l);
+        if (cosX <= 0.0 || cosY <= 0.0) {
+            ++culled;
+            continue;
+        }
+        int word = (m - first) / 32;
+        uint bit = 1u << uint((m - first) % 32);
+        bool visible = true;
+        if (visibility != AL_VIS_NONE) {
+            if ((agree[word] & bit) != 0u) {
+                visible = (anyVisible[word] & bit) != 0u;
+                ++reused;
+            } else {
+                visible = voxelMarch(origin, rayEnd(L, v.position.xyz, x), steps, thickness) >= 1.0;
+                ++raysCast;
+            }
+        }
+        if (!visible) continue;
+        bits[word] |= bit;
+        irradiance += v.radiance.rgb * (v.radiance.w * cosX * cosY / r2);
+    }
+    if (visibility == AL_VIS_INCREMENTAL) imageStore(i_bits, ivec3(gl_FragCoord.xy, u_batch), bits);
+    atomicAdd(u_stats[AL_STAT_RAYS_CAST], raysCast);
+    atomicAdd(u_stats[AL_STAT_RAYS_REUSED], reused);
+    atomicAdd(u_stats[AL_STAT_RAYS_CULLED], culled);
+    o_irradiance = vec4(u_shade ? irradiance : vec3(0.0), 1.0);
+}

@@ -1,0 +1,442 @@
+// `area-light` — multiresolution textured area lights with screen-space voxel visibility (Nichols
+// 2010, ch. 5; Nichols, Penmatsa & Wyman, Tech. Rep. UICS-10-01, 2010).
+//
+// Direct light only: this technique writes the frame's direct radiance (emission + the area lights'
+// light, Eq. 5.2) and zero indirect light; the indirect light of area lights stays with the other
+// techniques. Passes, per frame (timers in quotes):
+//   "vpls"            a vplsPerSide^2 grid of VPLs per light (thesis 16^2 = 256) on the light texture's
+//                     prefiltered mip level (§5.3.2.1; the texture animates: images, sequences, the
+//                     bouncing square).
+//   "voxelize"        the screen-space binary voxelization of the view frustum, voxelColumns^2 columns x
+//                     voxelBits (thesis 128) linear depth slices, logical-OR blending (§5.3.3; shared
+//                     machinery, techniques/screen_voxels).
+//   "min-max-mipmap"  the ch. 4 eye pyramid (depth derivative, normal min-max) down to coarsest (thesis:
+//                     incremental visibility starts at 64^2), and "lobe-mipmap" the BRDF-frequency
+//                     pyramid (min/max specular roughness per cell, §5.3.2.1).
+//   per level, coarsest first (§5.3.4, incremental stencil rendering), for the diffuse buffer:
+//   "classify"+"stencil"  which cells are in the refinement tree and which are rendered: parent refined by
+//                     depth/normal or lit discontinuously; emitter cells, cells facing away from every
+//                     light corner and cells behind one-sided lights culled (§5.3.2).
+//   "gather-diffuse"  Eq. 5.2 at rendered cells, with per-VPL binary visibility by voxel ray marching
+//                     (uniform steps, thick-ray bit test, origin bias; §5.3.3.1) refined incrementally:
+//                     per-cell VPL bitstreams, a VPL's bit reused where the parent level's 3x3 block
+//                     agrees, re-cast where it disagrees, 2x2 interleaved VPL subsets (§5.3.3.2);
+//                     tree cells that are not rendered compute their bitstreams only.
+//   "interleave"      subsets summed over same-surface neighbours; the bit-count metric (cells where at
+//                     least bitCountFraction of the VPLs are partially visible are refined).
+//   "upsample"        the §3.2.5 coarse-to-fine upsampling of this level (finer results replace coarser).
+//   "discontinuity"   cells whose neighbourhood varies by more than colourThreshold are refined (§5.3.4).
+//   then the same loop over the specular buffer ("gather-specular": the separate Phong pass, lobe-miss
+//   culling, lobe-width refinement, 5x5 lobe-centred texture samples when fewer than 9 VPLs fall in
+//   the lobe; §5.3.2.1), and "final": emission + albedo/pi E + F S per pixel.
+// visibility=brute ray-marches every VPL at every cell (§5.3.3.1, the baseline of Fig. 5.4);
+// visibility=none is §5.3.2's V = 1.
+//
+// Deviations and assumptions (docs/techniques/area-light.md): bounce's BRDF is GGX, so the "Phong"
+// pass evaluates the GGX specular lobe and takes its width from the equivalent Phong exponent;
+// the specular pass multiplies a per-pixel Schlick Fresnel at the end; the specular pass ray-marches
+// its VPLs and lobe samples without bitstreams, and the variance visibility of §5.3.3.3 is not
+// implemented; bitstreams are RGBA32UI image layers of 128 bits (the thesis: a 4 x 16-bit target for
+// 64 bits) written with image stores; the colour threshold compares radiance relative to the lights'
+// peak radiance; thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
+// voxel depth range (the scene bounds in view space) are assumptions (the thesis gives none).
+// Only area lights are shaded: a scene with point, spot or directional lights or emissive materials
+// is refused, so that the output is the like-for-like counterpart of `bounce reference --bounces 0`.
+#include "techniques/area_light/AreaLightTechnique.h"
+
+#include "core/Check.h"
+#include "gpu/Bindings.h"
+#include "gpu/Context.h"
+#include "gpu/ShaderLimits.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace bounce {
+
+namespace {
+
+constexpr int kLocalSize = 8;        // 2D compute passes' local size
+constexpr int kVplLocalSize = 64;    // vpls.comp
+constexpr int kMaxBitstreamLayers = 8;  // 1024 bits per cell: incremental visibility's storage bound
+
+gl::ProgramDesc fullscreen(std::string_view name, std::string_view fragment) {
+    return {std::string(name), {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, std::string(fragment)}}};
+}
+
+GLuint groups(int n) { return static_cast<GLuint>((n + kLocalSize - 1) / kLocalSize); }
+
+}  // namespace
+
+void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
+    v.field("vplsPerSide", m_vplsPerSide, "VPLs per side of each light's grid (thesis 16: 256 VPLs; 128: 16,384)", 1, 128);
+    v.field("coarsest", m_coarsest, "coarsest level of the multiresolution buffer (thesis: incremental visibility starts at 64^2)", 1, 4096);
+    v.field("depthThreshold", m_thresholds.depth, "max relative depth derivative per pixel before a cell is refined (assumption)", 0.0f, 1e9f);
+    v.field("normalThreshold", m_thresholds.normal, "normal component range, 0..2, before a cell is refined (assumption)", 0.0f, 2.0f);
+    v.field("visibility", m_visibility, "incremental: bitstream reuse (§5.3.3.2); brute: every VPL ray-marched at every cell (§5.3.3.1); none: V = 1 (§5.3.2)", kVisibilityModes);
+    v.field("interleave", m_interleave, "2x2 interleaved VPL subsets (§5.3.3.2)");
+    v.field("incrementalStencil", m_incrementalStencil, "refine cells lit discontinuously, coarse to fine (§5.3.4); off: depth/normal/lobe criteria only");
+    v.field("colourThreshold", m_colourThreshold, "illumination discontinuity: neighbourhood range relative to the peak emitted radiance (Fig. 5.10: 0.005)", 0.0f, 1e9f);
+    v.field("bitCountFraction", m_bitCountFraction, "refine where at least this fraction of the VPLs is partially visible in a 3x3 neighbourhood (thesis 128 of 256); above 1: off", 0.0f, 2.0f);
+    v.field("voxelColumns", m_voxelColumns, "voxel grid x/y resolution (thesis 128^2 .. 1024^2)", 1, 4096);
+    v.field("voxelBits", m_voxelBits, "voxel depth bits per column, a multiple of 128 (thesis 128)", 128, 1024);
+    v.field("voxelFootprint", m_voxelFootprint, "a fragment sets every depth slice its triangle spans in the pixel (deviation; off: the one slice at the pixel centre, the thesis)");
+    v.field("raySteps", m_raySteps, "uniform samples per visibility ray (assumption)", 1, 256);
+    v.field("rayThickness", m_rayThickness, "extra depth bits tested each side of a step (the thick ray; assumption)", 0, 64);
+    v.field("rayBias", m_rayBias, "ray origin offset along the normal, in voxels (assumption; Fig. 5.12)", 0.0f, 64.0f);
+    v.field("specular", m_specular, "separate specular (Phong) gather pass (§5.3.2.1)");
+    v.field("lobeThreshold", m_lobeThreshold, "fraction of the lobe's peak that bounds the lobe (culling, refinement, footprint; assumption)", 1e-4f, 0.999f);
+    v.field("lobeVpls", m_lobeVpls, "fewer VPLs than this in the lobe: 5x5 lobe-centred texture samples (thesis 9)", 0.0f, 1e9f);
+    v.field("lobeSpacing", m_lobeSpacing, "refine while a cell's angular spread exceeds this times the lobe half-angle (assumption)", 1e-3f, 1e3f);
+    v.field("interleaveNormal", m_interleaveNormal, "interleave reconstruction: min normal cosine of neighbours on the same surface (assumption)", -1.0f, 1.0f);
+    v.field("interleaveDepth", m_interleaveDepth, "interleave reconstruction: max plane distance / eye distance (assumption)", 0.0f, 1e9f);
+}
+
+Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
+    m_lightIndices.clear();
+    for (size_t i = 0; i < ctx.scene.lights.size(); ++i) {
+        const Light& l = ctx.scene.lights[i];
+        if (l.type != LightType::Area)
+            return makeError("scene '{}': light '{}' is not an area light (area-light shades rectangular area lights only)",
+                             ctx.scene.name, l.name);
+        m_lightIndices.push_back(i);
+    }
+    if (m_lightIndices.empty()) return makeError("scene '{}': no area light (area-light needs one)", ctx.scene.name);
+    if (m_lightIndices.size() > AL_MAX_LIGHTS)
+        return makeError("scene '{}': {} area lights; area-light shades at most {}", ctx.scene.name, m_lightIndices.size(),
+                         AL_MAX_LIGHTS);
+    for (const Material& m : ctx.scene.materials)
+        if (glm::any(glm::greaterThan(m.emission, glm::vec3(0.0f))))
+            return makeError("scene '{}': material '{}' is emissive; area-light treats only area lights as lights",
+                             ctx.scene.name, m.name);
+    m_hasSpecularMaterials = std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(), [](const Material& m) {
+        return m.specularF0 > 0.0f || m.metallic > 0.0f;
+    });
+    const int vplsPerLight = m_vplsPerSide * m_vplsPerSide;
+    m_vplCount = vplsPerLight * static_cast<int>(m_lightIndices.size());
+    const int subsets = m_interleave ? 4 : 1;
+    if (m_vplCount % subsets != 0)
+        return makeError("setting interleave=on needs a VPL count divisible by 4 (vplsPerSide={} gives {})", m_vplsPerSide,
+                         m_vplCount);
+    m_perCell = m_vplCount / subsets;
+    m_layers = (m_perCell + SV_BITS_PER_LAYER - 1) / SV_BITS_PER_LAYER;
+    if (m_visibility == "incremental" && m_layers > kMaxBitstreamLayers)
+        return makeError("setting visibility=incremental stores {} VPL bits per cell, more than {}; use fewer VPLs, "
+                         "interleave=on or visibility=brute",
+                         m_perCell, kMaxBitstreamLayers * SV_BITS_PER_LAYER);
+    BOUNCE_TRY_VOID(voxels::checkGrid({glm::ivec2(m_voxelColumns), m_voxelBits}, "voxelColumns", "voxelBits"));
+
+    BOUNCE_TRY(m_pyramid, nichols::MinMaxPyramid::create());
+    BOUNCE_TRY(m_diffuse, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_specularBuffer, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_voxels, voxels::ScreenVoxels::create());
+    BOUNCE_TRY(m_vplProgram, gl::Program::build({"areaLight.vpls", {{GL_COMPUTE_SHADER, "techniques/area_light/vpls.comp"}}}));
+    BOUNCE_TRY(m_lobeProgram, gl::Program::build({"areaLight.lobePyramid", {{GL_COMPUTE_SHADER, "techniques/area_light/lobe_pyramid.comp"}}}));
+    BOUNCE_TRY(m_classify, gl::Program::build({"areaLight.classify", {{GL_COMPUTE_SHADER, "techniques/area_light/classify.comp"}}}));
+    BOUNCE_TRY(m_resolve, gl::Program::build({"areaLight.resolve", {{GL_COMPUTE_SHADER, "techniques/area_light/resolve.comp"}}}));
+    BOUNCE_TRY(m_discontinuity, gl::Program::build({"areaLight.discontinuity", {{GL_COMPUTE_SHADER, "techniques/area_light/discontinuity.comp"}}}));
+    BOUNCE_TRY(m_stencil, gl::Program::build(fullscreen("areaLight.stencil", "techniques/area_light/stencil.frag")));
+    BOUNCE_TRY(m_gatherDiffuse, gl::Program::build(fullscreen("areaLight.gatherDiffuse", "techniques/area_light/gather_diffuse.frag")));
+    BOUNCE_TRY(m_gatherSpecular, gl::Program::build(fullscreen("areaLight.gatherSpecular", "techniques/area_light/gather_specular.frag")));
+    BOUNCE_TRY(m_final, gl::Program::build(fullscreen("areaLight.final", "techniques/area_light/final.frag")));
+    m_passUbo = gl::Buffer::create("areaLight.pass", sizeof(gpu::AreaPassUniforms));
+    m_vpls = gl::Buffer::create("areaLight.vpls", sizeof(gpu::AreaVplGpu) * static_cast<size_t>(m_vplCount));
+    m_stats = gl::Buffer::create("areaLight.stats", sizeof(uint32_t) * AL_STAT_COUNT);
+    m_finalFbo = gl::Framebuffer::create("areaLight.final.fbo");
+    m_clearFbo = gl::Framebuffer::create("areaLight.clear.fbo");
+    m_size = ctx.size;
+    return {};
+}
+
+void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
+    gpu::AreaPassUniforms& u = m_uniforms;
+    u = {};
+    m_peakRadiance = 0.0f;
+    const std::vector<Light>& lights = ctx.sceneGpu.lights();
+    for (size_t k = 0; k < m_lightIndices.size(); ++k) {
+        const Light& l = lights[m_lightIndices[k]];
+        const gl::Texture& tex = ctx.lights.areaTexture(m_lightIndices[k]);
+        gpu::AreaLightGpu& g = u.lights[k];
+        g.centre = glm::vec4(l.position, l.twoSided ? 1.0f : 0.0f);
+        g.edgeU = glm::vec4(l.edgeU, glm::length(l.edgeU));
+        g.edgeV = glm::vec4(l.edgeV, glm::length(l.edgeV));
+        g.normal = glm::vec4(l.areaNormal(), l.area());
+        g.radiance = glm::vec4(l.radiance, l.texture.textured() ? 1.0f : 0.0f);
+        g.texture = glm::vec4(tex.width(), tex.height(), static_cast<float>(k) * m_vplsPerSide * m_vplsPerSide, m_vplsPerSide);
+        m_peakRadiance = std::max({m_peakRadiance, l.radiance.r, l.radiance.g, l.radiance.b});
+    }
+    const float visibility = m_visibility == "none" ? AL_VIS_NONE : m_visibility == "brute" ? AL_VIS_BRUTE : AL_VIS_INCREMENTAL;
+    u.counts = glm::vec4(static_cast<float>(m_lightIndices.size()), m_vplCount, m_perCell, m_interleave ? 4 : 1);
+    // The bias in metres: rayBias voxels of the larger of a slice's depth and a column's width at the
+    // middle of the grid's depth range.
+    const gpu::ScreenVoxelsGpu& vg = m_voxels->uniforms();
+    const float midDepth = 0.5f * (vg.depth.x + vg.depth.y);
+    const float columnWidth = 2.0f * midDepth / (ctx.camera.clipFromView[1][1] * static_cast<float>(m_voxelColumns));
+    const float voxel = std::max(vg.depth.w, columnWidth);
+    u.march = glm::vec4(m_raySteps, m_rayThickness, m_rayBias * voxel, visibility);
+    u.refine = glm::vec4(m_colourThreshold, m_bitCountFraction * static_cast<float>(m_vplCount),
+                         m_incrementalStencil ? 1.0f : 0.0f, m_peakRadiance);
+    // The angle one camera pixel subtends (perspective: 2 tan(fov/2) / height, small-angle).
+    const float pixelAngle = 2.0f / (ctx.camera.clipFromView[1][1] * static_cast<float>(m_size.y));
+    u.lobe = glm::vec4(m_lobeThreshold, m_lobeVpls, m_lobeSpacing, pixelAngle);
+    u.geometry = glm::vec4(m_interleaveNormal, m_interleaveDepth, 0.0f, m_layers);
+    m_passUbo.upload(0, sizeof(u), &u);
+    m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+}
+
+void AreaLightTechnique::buildLobePyramid(FrameContext& ctx) {
+    const int levels = m_pyramid->levels();
+    if (!m_lobe || m_lobe.width() != m_size.x || m_lobe.height() != m_size.y || m_lobe.desc().levels != levels) {
+        gl::TextureDesc d;
+        d.target = GL_TEXTURE_2D_ARRAY;
+        d.width = m_size.x;
+        d.height = m_size.y;
+        d.levels = levels;
+        d.format = GL_RGBA32F;
+        d.minFilter = GL_NEAREST_MIPMAP_NEAREST;
+        d.magFilter = GL_NEAREST;
+        m_lobe = gl::Texture::create("areaLight.lobePyramid", d);
+    }
+    ctx.gbuffer.bind();
+    for (int k = 0; k < levels; ++k) {
+        const glm::ivec2 s = m_pyramid->levelSize(k);
+        BOUNCE_CHECK(k > 0 || s == m_size, "eye pyramid level 0 is the frame size");
+        if (k > 0) m_lobe.bindImage(BINDING_IMG0, GL_READ_ONLY, k - 1, true);
+        m_lobe.bindImage(BINDING_IMG1, GL_WRITE_ONLY, k, true);
+        m_lobeProgram.set("u_base", k == 0 ? 1 : 0);
+        m_lobeProgram.set("u_size", s);
+        m_lobeProgram.set("u_childSize", k > 0 ? m_pyramid->levelSize(k - 1) : s);
+        m_lobeProgram.use();
+        glDispatchCompute(groups(s.x), groups(s.y), 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+}
+
+AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer,
+                                                                  bool specular) {
+    PassCounts counts;
+    buffer.begin(*m_pyramid);
+    const glm::ivec2 atlas = buffer.atlasSize();
+    if (!m_flags || m_flags.width() != atlas.x || m_flags.height() != atlas.y) {
+        m_flags = gl::Texture::create2D("areaLight.flags", atlas.x, atlas.y, GL_R32UI);
+        m_flags.setFilter(GL_NEAREST, GL_NEAREST);
+        m_subsets = gl::Texture::create2D("areaLight.subsets", atlas.x, atlas.y, GL_RGBA32F);
+        m_subsets.setFilter(GL_NEAREST, GL_NEAREST);
+        gl::TextureDesc d;
+        d.target = GL_TEXTURE_2D_ARRAY;
+        d.width = atlas.x;
+        d.height = atlas.y;
+        d.depth = m_layers;
+        d.format = GL_RGBA32UI;
+        d.minFilter = d.magFilter = GL_NEAREST;
+        m_bits = gl::Texture::create("areaLight.bitstreams", d);
+    }
+    const GLuint zero = 0;
+    glClearTexImage(m_flags.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    m_uniforms.geometry.z = specular ? 1.0f : 0.0f;
+    m_passUbo.upload(0, sizeof(m_uniforms), &m_uniforms);
+    m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+
+    const int levels = buffer.levels();
+    const int coarsest = levels - 1;
+    const bool incremental = m_visibility == "incremental" && !specular;
+    const bool interleave = m_interleave && !specular;
+    counts.rendered.assign(static_cast<size_t>(levels), 0.0);
+    counts.tree.assign(static_cast<size_t>(levels), 0.0);
+    gl::Program& gather = specular ? m_gatherSpecular : m_gatherDiffuse;
+    if (m_visibility != "none") m_voxels->bind();
+    m_vpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+    m_stats.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+
+    for (int k = coarsest; k >= 0; --k) {
+        const glm::ivec2 size = buffer.levelSize(k), origin = buffer.levelOrigin(k);
+        const glm::ivec2 parentOrigin = k < coarsest ? buffer.levelOrigin(k + 1) : origin;
+        const glm::ivec2 parentSize = k < coarsest ? buffer.levelSize(k + 1) : size;
+        {
+            auto s = ctx.timers.scope("stencil");
+            m_pyramid->geometry().bind(BINDING_TEX_TECH0);
+            m_pyramid->refine().bind(BINDING_TEX_TECH1);
+            m_pyramid->normal().bind(BINDING_TEX_TECH2);
+            (m_lobe ? m_lobe : m_pyramid->normal()).bind(BINDING_TEX_TECH3);
+            m_pyramid->normalMin().bind(BINDING_TEX_INPUT0);
+            m_pyramid->normalMax().bind(BINDING_TEX_INPUT1);
+            m_flags.bindImage(BINDING_IMG0, GL_READ_WRITE);
+            m_classify.set("u_level", k);
+            m_classify.set("u_levelOrigin", origin);
+            m_classify.set("u_parentOrigin", parentOrigin);
+            m_classify.set("u_coarsest", coarsest);
+            m_classify.set("u_specular", specular ? 1 : 0);
+            m_classify.use();
+            glDispatchCompute(groups(size.x), groups(size.y), 1);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+            m_flags.bind(BINDING_TEX_TECH0);
+            m_stencil.set("u_ref", 1);
+            buffer.stencilLevel(k, m_stencil, 1);
+            if (incremental) {
+                m_stencil.set("u_ref", 2);
+                buffer.stencilLevel(k, m_stencil, 2);
+            }
+        }
+        {
+            auto s = ctx.timers.scope(specular ? "gather-specular" : "gather-diffuse");
+            m_pyramid->geometry().bind(BINDING_TEX_TECH0);
+            m_pyramid->normal().bind(BINDING_TEX_TECH1);
+            if (specular) {
+                m_lobe.bind(BINDING_TEX_TECH2);
+                const unsigned units[AL_MAX_LIGHTS] = {BINDING_TEX_AREA_LIGHT, BINDING_TEX_INPUT0, BINDING_TEX_INPUT1,
+                                                      BINDING_TEX_INPUT2};
+                for (size_t i = 0; i < AL_MAX_LIGHTS; ++i)
+                    ctx.lights.areaTexture(m_lightIndices[std::min(i, m_lightIndices.size() - 1)]).bind(units[i]);
+                // One loop iteration per VPL plus up to raySteps march iterations for each: draws of at most
+                // half the shader loop budget (gpu/ShaderLimits.h).
+                const int perDraw = std::max(1, gl::kShaderLoopIterationBudget / 2 / (m_raySteps + 2));
+                const int batches = (m_vplCount + perDraw - 1) / perDraw;
+                counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, batches, [&](int b) {
+                    gather.set("u_vplFirst", static_cast<unsigned>(b * perDraw));
+                    gather.set("u_vplEnd", static_cast<unsigned>((b + 1) * perDraw));
+                });
+            } else {
+                m_flags.bind(BINDING_TEX_TECH2);
+                m_bits.bindImage(BINDING_IMG0, GL_READ_WRITE, 0, true);
+                gather.set("u_parentOrigin", parentOrigin);
+                gather.set("u_parentSize", parentSize);
+                gather.set("u_coarsest", coarsest);
+                // One draw per bitstream layer: 128 VPLs, each at most raySteps march iterations.
+                const auto setBatch = [&](int b) { gather.set("u_batch", b); };
+                gather.set("u_shade", 1);
+                counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, m_layers, setBatch);
+                if (incremental) {
+                    gather.set("u_shade", 0);
+                    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+                    counts.tree[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 2, m_layers, setBatch);
+                    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+                }
+                counts.tree[static_cast<size_t>(k)] += counts.rendered[static_cast<size_t>(k)];
+                glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+            }
+        }
+        const bool bitCount = incremental && m_bitCountFraction <= 1.0f && m_incrementalStencil;
+        if (interleave || bitCount) {
+            auto s = ctx.timers.scope("interleave");
+            glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+            if (interleave)
+                glCopyImageSubData(buffer.atlas().id(), GL_TEXTURE_2D, 0, origin.x, origin.y, 0, m_subsets.id(), GL_TEXTURE_2D,
+                                   0, origin.x, origin.y, 0, size.x, size.y, 1);
+            m_subsets.bind(BINDING_TEX_TECH0);
+            m_pyramid->geometry().bind(BINDING_TEX_TECH1);
+            m_pyramid->normal().bind(BINDING_TEX_TECH2);
+            buffer.atlas().bindImage(BINDING_IMG0, GL_WRITE_ONLY);
+            m_flags.bindImage(BINDING_IMG1, GL_READ_WRITE);
+            m_bits.bindImage(BINDING_IMG2, GL_READ_ONLY, 0, true);
+            m_resolve.set("u_level", k);
+            m_resolve.set("u_levelOrigin", origin);
+            m_resolve.set("u_size", size);
+            m_resolve.set("u_resolve", interleave ? 1 : 0);
+            m_resolve.set("u_bitCount", bitCount ? 1 : 0);
+            m_resolve.use();
+            glDispatchCompute(groups(size.x), groups(size.y), 1);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
+        {
+            auto s = ctx.timers.scope("upsample");
+            buffer.upsampleLevel(k, true);
+        }
+        if (m_incrementalStencil && k > 0) {
+            auto s = ctx.timers.scope("discontinuity");
+            m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+            buffer.result().bind(BINDING_TEX_TECH0);
+            m_flags.bindImage(BINDING_IMG1, GL_READ_WRITE);
+            const float peak = std::max(m_peakRadiance, 1e-12f);
+            m_discontinuity.set("u_level", k);
+            m_discontinuity.set("u_levelOrigin", origin);
+            m_discontinuity.set("u_size", size);
+            m_discontinuity.set("u_scale", specular ? 1.0f / peak : 1.0f / (3.14159265f * peak));
+            m_discontinuity.use();
+            glDispatchCompute(groups(size.x), groups(size.y), 1);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
+        m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+    }
+    return counts;
+}
+
+void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    const float zero[4] = {0, 0, 0, 0};
+    m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
+    glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);
+    m_stats.clearZero();
+    if (m_visibility != "none") {
+        auto s = ctx.timers.scope("voxelize");
+        m_voxels->build(ctx.drawer, ctx.camera, {glm::ivec2(m_voxelColumns), m_voxelBits, m_voxelFootprint});
+    }
+    updateUniforms(ctx);
+    {
+        auto s = ctx.timers.scope("vpls");
+        m_vpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+        const int perLight = m_vplsPerSide * m_vplsPerSide;
+        for (size_t k = 0; k < m_lightIndices.size(); ++k) {
+            ctx.lights.areaTexture(m_lightIndices[k]).bind(BINDING_TEX_AREA_LIGHT);
+            m_vplProgram.set("u_light", static_cast<int>(k));
+            m_vplProgram.use();
+            glDispatchCompute(static_cast<GLuint>((perLight + kVplLocalSize - 1) / kVplLocalSize), 1, 1);
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto s = ctx.timers.scope("min-max-mipmap");
+        m_pyramid->buildEye(ctx.gbuffer, m_coarsest, m_thresholds);
+    }
+    const bool specular = m_specular && m_hasSpecularMaterials;
+    if (specular) {
+        auto s = ctx.timers.scope("lobe-mipmap");
+        buildLobePyramid(ctx);
+    }
+    m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+    const PassCounts diffuse = renderMultires(ctx, *m_diffuse, false);
+    PassCounts spec;
+    if (specular) spec = renderMultires(ctx, *m_specularBuffer, true);
+    {
+        auto s = ctx.timers.scope("final");
+        m_finalFbo.attach(GL_COLOR_ATTACHMENT0, ctx.direct);
+        m_finalFbo.setDrawBuffers(1);
+        BOUNCE_CHECK(m_finalFbo.complete(), "area-light final framebuffer");
+        m_finalFbo.bind();
+        glViewport(0, 0, m_size.x, m_size.y);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_STENCIL_TEST);
+        ctx.gbuffer.bind();
+        m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+        m_diffuse->result().bind(BINDING_TEX_TECH0);
+        (specular ? m_specularBuffer->result() : m_diffuse->result()).bind(BINDING_TEX_TECH1);
+        m_final.set("u_hasSpecular", specular ? 1 : 0);
+        m_final.use();
+        gl::Context::current()->bindEmptyVertexArray();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    uint32_t stats[AL_STAT_COUNT] = {};
+    m_stats.download(0, sizeof(stats), stats);
+    Counters& c = ctx.counters;
+    c["vpls"] = m_vplCount;
+    c["raysCast"] = stats[AL_STAT_RAYS_CAST];
+    c["raysReused"] = stats[AL_STAT_RAYS_REUSED];
+    c["raysCulled"] = stats[AL_STAT_RAYS_CULLED];
+    c["lobeSampledCells"] = stats[AL_STAT_LOBE_SAMPLED];
+    c["partiallyVisibleFraction"] =
+        stats[AL_STAT_TREE_CELLS] > 0 ? double(stats[AL_STAT_PARTIAL_VPLS]) / (double(stats[AL_STAT_TREE_CELLS]) * m_vplCount) : 0.0;
+    for (size_t k = 0; k < diffuse.rendered.size(); ++k) {
+        const glm::ivec2 s = m_diffuse->levelSize(static_cast<int>(k));
+        c[fmt::format("fragments/level-{}", k)] = diffuse.rendered[k];
+        c[fmt::format("renderedFraction/level-{}", k)] = diffuse.rendered[k] / (double(s.x) * s.y);
+        c[fmt::format("treeCells/level-{}", k)] = diffuse.tree[k];
+    }
+    for (size_t k = 0; k < spec.rendered.size(); ++k) c[fmt::format("specularFragments/level-{}", k)] = spec.rendered[k];
+    c["gatherFragments"] = std::accumulate(diffuse.rendered.begin(), diffuse.rendered.end(), 0.0);
+    c["specularFragments"] = std::accumulate(spec.rendered.begin(), spec.rendered.end(), 0.0);
+}
+
+}  // namespace bounce
