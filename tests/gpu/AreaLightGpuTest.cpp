@@ -197,10 +197,11 @@ TEST_F(AreaLightGpuTest, IncrementalVisibilityCastsFewerRaysAndAgreesWithBruteFo
     // rays are saved; measured 0.5 (docs); 0.8 fails if reuse stops working.
     EXPECT_LT(cast, 0.8 * bruteCast);
     // The reused bits are the ones the coarse level agreed on: the images agree closely (relMse of
-    // the incremental image against brute force; measured 2e-3).
+    // the incremental image against brute force: measured 1.3e-3; reusing a bit also where the coarse
+    // cells disagree gives 7.4e-3).
     const float emitted = luminance(scene->lights[0].radiance);
     auto [a, b] = receiversOnly(incremental.direct, brute.direct, emitted);
-    EXPECT_LT(relMse(a, b), 0.01);
+    EXPECT_LT(relMse(a, b), 0.004);
 }
 
 TEST_F(AreaLightGpuTest, TexturedLightColoursTheReceiverUnderEachHalf) {
