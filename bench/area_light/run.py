@@ -1,0 +1,188 @@
+#!/usr/bin/env python3
+"""Benchmarks of `area-light` (Nichols 2010 ch. 5) through the CLI's run records.
+
+Usage: bench/area_light/run.py [BOUNCE] [--quick] [--reps N]   (BOUNCE defaults to build/src/app/bounce)
+
+R8 rows (summary ../shared/specs, result R8; thesis §5.4):
+  fractions  fraction of each level's cells rendered (thesis: ~50 % of 64^2 fragments, 10-15 % of
+             1024^2 pixels), at 1024^2 (512^2 with --quick); partially visible VPLs per 3x3
+             neighbourhood (thesis: < 5 %).
+  incremental vs brute-force visibility: rays cast and reused, gather and frame GPU ms, interleaved
+             (incremental, brute, incremental, ...), --reps repetitions; ratio per rep.
+  voxels     128^2 x 128 vs 1024^2 x 128 voxel grids (thesis: "almost indistinguishable"): relMSE and
+             HDR-FLIP against `bounce reference --bounces 0`, voxelize and gather ms.
+  vpls       256 vs 16,384 VPLs (vplsPerSide 16 vs 128, visibility none so that only the light's
+             sampling differs): the 256-VPL image against the 16,384-VPL one, on the diffuse Cornell
+             box and on a bouncing-square light (thesis Fig. 5.15: indistinguishable for diffuse
+             surfaces, not for the square).
+  threshold  frame ms and rendered fragments against the colour threshold (thesis: it dominates the
+             cost when low, 0.005).
+Frame times: GPU scope of the technique, median over the frames after the first (the first compiles
+shaders on llvmpipe). The raw record goes to bench/results/area-light-<date>.json; bench/tables.py
+makes the README table from it. llvmpipe times are indicative; counts and ratios are the result.
+"""
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from record import new_record, write_record  # noqa: E402
+
+CORNELL = {"scene": "cornell-box-area", "params": []}
+# The bouncing-square light of Fig. 5.15 (built-in scene area-screen, pattern=square).
+SQUARE = {"scene": "area-screen", "params": ["pattern=square"]}
+FRAMES = 3
+
+
+def rel(cmd):
+    return " ".join(os.path.relpath(c, ROOT) if os.path.isabs(c) and c.startswith(ROOT) else c for c in cmd)
+
+
+def render(bounce, case, size, settings=None, out=None, frames=FRAMES):
+    with tempfile.TemporaryDirectory() as tmp:
+        stats = os.path.join(tmp, "run.json")
+        cmd = [bounce, "render", "--scene", case["scene"], "--technique", "area-light", "--size", f"{size}x{size}",
+               "--frames", str(frames), "--out", out or os.path.join(tmp, "o.exr"), "--stats", stats]
+        for p in case["params"]:
+            cmd += ["--scene-param", p]
+        for k, v in (settings or {}).items():
+            cmd += ["--set", f"{k}={v}"]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        with open(stats) as f:
+            return json.load(f), rel(cmd)
+
+
+def reference(bounce, case, size, out, spp, frame):
+    cmd = [bounce, "reference", "--scene", case["scene"], "--size", f"{size}x{size}", "--bounces", "0",
+           "--spp", str(spp), "--frame", str(frame), "--out", out]
+    for p in case["params"]:
+        cmd += ["--scene-param", p]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    return rel(cmd)
+
+
+def compare(bounce, test, ref):
+    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
+    m = json.loads(out)["metrics"]
+    return {"relMse": m["relMse"], "flipHdr": m["flipHdr"], "nrmse": m["nrmse"]}
+
+
+def later(rec):
+    return rec["frames"][1:] if len(rec["frames"]) > 1 else rec["frames"]
+
+
+def gpu(rec, scope):
+    return [f["gpu_ms"].get(scope, 0.0) for f in later(rec)]
+
+
+def counter(rec, name):
+    return statistics.median(f["counters"].get(name, 0.0) for f in later(rec))
+
+
+def summary(values):
+    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
+
+
+def has_scene(bounce, name):
+    out = subprocess.run([bounce, "list"], capture_output=True, text=True).stdout
+    return name in out
+
+
+def main():
+    args = list(sys.argv[1:])
+    quick = "--quick" in args
+    reps = 3
+    if "--reps" in args:
+        reps = int(args[args.index("--reps") + 1])
+        del args[args.index("--reps"):args.index("--reps") + 2]
+    args = [a for a in args if a != "--quick"]
+    bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
+    rec = new_record("area-light", "bench/area_light/run.py" + (" --quick" if quick else "") + f" --reps {reps}", bounce)
+    rec["reps"] = reps
+    big = 512 if quick else 1024
+    size = 128 if quick else 256
+
+    # R8: fractions of rendered cells per level at big^2.
+    r, cmd = render(bounce, CORNELL, big)
+    levels = sorted(int(k.split("-")[-1]) for k in later(r)[0]["counters"] if k.startswith("renderedFraction/level-"))
+    rec["fractions"] = {"size": big, "command": cmd,
+                        "levels": {str(k): {"cells": f"{big >> k}x{big >> k}",
+                                            "renderedFraction": counter(r, f"renderedFraction/level-{k}"),
+                                            "fragments": counter(r, f"fragments/level-{k}")} for k in levels},
+                        "partiallyVisibleFraction": counter(r, "partiallyVisibleFraction"),
+                        "frameMs": summary(gpu(r, "area-light"))}
+    print("fractions", {k: round(v["renderedFraction"], 3) for k, v in rec["fractions"]["levels"].items()}, flush=True)
+
+    # Incremental vs brute force, interleaved.
+    modes = {"incremental": {}, "brute": {"visibility": "brute"}}
+    runs = {m: [] for m in modes}
+    cmds = {}
+    for _ in range(reps):
+        for m, s in modes.items():
+            r, c = render(bounce, CORNELL, size, s)
+            runs[m].append(r)
+            cmds[m] = c
+    inc = {}
+    for m in modes:
+        inc[m] = {"command": cmds[m], "frameMs": summary([v for r in runs[m] for v in gpu(r, "area-light")]),
+                  "gatherMs": summary([v for r in runs[m] for v in gpu(r, "area-light/gather-diffuse")]),
+                  "raysCast": statistics.median(counter(r, "raysCast") for r in runs[m]),
+                  "raysReused": statistics.median(counter(r, "raysReused") for r in runs[m])}
+    inc["gatherSpeedupPerRep"] = [statistics.median(gpu(b, "area-light/gather-diffuse")) / statistics.median(gpu(a, "area-light/gather-diffuse"))
+                                  for a, b in zip(runs["incremental"], runs["brute"])]
+    inc["raysCastRatio"] = inc["incremental"]["raysCast"] / inc["brute"]["raysCast"]
+    inc["size"] = size
+    rec["incremental"] = inc
+    print("incremental", inc["raysCastRatio"], inc["gatherSpeedupPerRep"], flush=True)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        # Voxel grids against the reference.
+        vsize = 256 if quick else 512
+        ref = os.path.join(tmp, "ref.exr")
+        refcmd = reference(bounce, CORNELL, vsize, ref, 256 if quick else 1024, FRAMES - 1)
+        vox = {"size": vsize, "referenceCommand": refcmd}
+        for cols in ([128, 256] if quick else [128, 512, 1024]):
+            out = os.path.join(tmp, f"v{cols}.exr")
+            r, c = render(bounce, CORNELL, vsize, {"voxelColumns": str(cols)}, out)
+            vox[str(cols)] = {"command": c, "vsReference": compare(bounce, out, ref),
+                              "voxelizeMs": summary(gpu(r, "area-light/voxelize")),
+                              "gatherMs": summary(gpu(r, "area-light/gather-diffuse"))}
+        rec["voxels"] = vox
+        print("voxels", {k: round(v["vsReference"]["relMse"], 4) for k, v in vox.items() if isinstance(v, dict) and "vsReference" in v}, flush=True)
+
+        # 256 vs 16,384 VPLs.
+        vpls = {}
+        cases = {"cornell-box-area": CORNELL}
+        if has_scene(bounce, "area-screen"):
+            cases["bouncing-square"] = SQUARE
+        for name, case in cases.items():
+            entry = {}
+            outs = {}
+            for side in [16, 128]:
+                outs[side] = os.path.join(tmp, f"{name}-{side}.exr")
+                r, c = render(bounce, case, size, {"vplsPerSide": str(side), "visibility": "none"}, outs[side])
+                entry[str(side * side)] = {"command": c, "frameMs": summary(gpu(r, "area-light"))}
+            # The 16,384-VPL image is the light's converged sampling (same transport, V = 1).
+            entry["256vs16384"] = compare(bounce, outs[16], outs[128])
+            vpls[name] = entry
+        rec["vpls"] = vpls
+        print("vpls", {n: round(e["256vs16384"]["relMse"], 5) for n, e in vpls.items()}, flush=True)
+
+    # Colour threshold.
+    thr = {}
+    for t in ["0.005", "0.02", "0.1", "1e9"]:
+        r, c = render(bounce, CORNELL, size, {"colourThreshold": t})
+        thr[t] = {"command": c, "frameMs": summary(gpu(r, "area-light")), "fragments": counter(r, "gatherFragments"),
+                  "raysCast": counter(r, "raysCast")}
+    rec["threshold"] = thr
+    rec["thresholdSize"] = size
+    print("threshold", {k: round(v["frameMs"]["median"], 1) for k, v in thr.items()}, flush=True)
+    print(write_record(rec))
+
+
+if __name__ == "__main__":
+    main()
