@@ -6,6 +6,7 @@
 // Inputs: split atlas (INPUT0 position, INPUT1 normal), VPLs (SSBO TECH0), tile lists (SSBO TECH1),
 // paraboloid maps (TECH0, sampler2DArrayShadow), u_maxGeometry = 1/d_c^2, u_far, u_depthBias
 // (fraction of u_far), u_normalOffset (metres). Output: irradiance W/m^2 (rgb).
+#include "techniques/paraboloid/paraboloid.glsl"
 struct VplGpu {
     vec4 position;   // w: shadow-map layer
     vec4 normal;
@@ -49,10 +50,7 @@ void main() {
         float cosX = -dot(nx, w);
         if (cosV <= 0.0 || cosX <= 0.0) continue;
         float geometry = min(cosV * cosX / d2, u_maxGeometry);
-        vec3 tangent = v.tangent.xyz;
-        vec3 bitangent = cross(v.normal.xyz, tangent);
-        vec2 uv = vec2(dot(w, tangent), dot(w, bitangent)) / (1.0 + cosV);
-        float visibility = texture(s_paraboloid, vec4(uv * 0.5 + 0.5, v.position.w, d / u_far - u_depthBias));
+        float visibility = paraboloidVisibility(s_paraboloid, v.position.w, w, d, v.normal.xyz, v.tangent.xyz, u_far, u_depthBias);
         irradiance += v.intensity.rgb * geometry * visibility;
     }
     o_irradiance = vec4(irradiance * float(u_tiles.x * u_tiles.y), 1.0);

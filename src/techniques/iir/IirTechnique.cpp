@@ -160,8 +160,8 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
     m_sceneDiagonal = std::max(glm::length(hi - lo), 1e-6f);
 
     BOUNCE_TRY(m_paraboloid, gl::Program::build({"iir.paraboloid",
-                                                 {{GL_VERTEX_SHADER, "techniques/iir/paraboloid.vert"},
-                                                  {GL_FRAGMENT_SHADER, "techniques/iir/paraboloid.frag"}}}));
+                                                 {{GL_VERTEX_SHADER, "techniques/paraboloid/paraboloid.vert"},
+                                                  {GL_FRAGMENT_SHADER, "techniques/paraboloid/paraboloid.frag"}}}));
     BOUNCE_TRY(m_split, gl::Program::build({"iir.split", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                           {GL_FRAGMENT_SHADER, "techniques/iir/split.frag"}}}));
     BOUNCE_TRY(m_accumulate, gl::Program::build({"iir.accum", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},

@@ -1,4 +1,5 @@
-// Paraboloid shadow map of one VPL (Laine et al. 2007 §5.1; Brabec et al. 2002): the hemisphere
+// Paraboloid shadow map of one VPL (Laine et al. 2007 §5.1; Brabec et al. 2002; shared by iir and
+// area-light's shadow-map baseline): the hemisphere
 // around the VPL's normal maps to the unit disc by uv = d.xy / (1 + d.z), d the unit direction in the
 // VPL frame. Host sets u_vplFromWorld (rows: tangent, bitangent, normal) and u_vplPosition (world).
 // Inputs: ATTR_* vertex attributes, ATTR_OBJECT_INDEX. Outputs: v_local (position in the VPL frame);
