@@ -44,11 +44,13 @@ struct AreaPassUniforms {
                       // 5x5 samples are used (9), z: sample-spacing factor, w: camera pixel angle (rad)
     vec4 geometry;    // x: normal-similarity cosine for interleave resolve, y: relative depth tolerance,
                       // z: 1 = specular pass, w: bitstream layers (128 bits each)
+    vec4 shadow;      // shadow-map baseline: x depth bias (fraction of far), yz unused, w: far (m)
 };
 
 #define AL_VIS_NONE 0         // V = 1 (§5.3.2)
 #define AL_VIS_BRUTE 1        // every VPL ray-marched at every cell (§5.3.3.1)
 #define AL_VIS_INCREMENTAL 2  // bitstream reuse from the coarser level (§5.3.3.2)
+#define AL_VIS_SHADOW_MAPS 3  // one rasterized paraboloid shadow map per VPL (the §5.4.6 baseline)
 
 // One VPL on a light (§5.3.2.1): a 16 x 16 grid cell's centre, its area and its prefiltered radiance.
 struct AreaVplGpu {
@@ -58,7 +60,7 @@ struct AreaVplGpu {
 
 #ifdef __cplusplus
 static_assert(sizeof(AreaLightGpu) == 96);
-static_assert(sizeof(AreaPassUniforms) == AL_MAX_LIGHTS * 96 + 5 * 16);
+static_assert(sizeof(AreaPassUniforms) == AL_MAX_LIGHTS * 96 + 6 * 16);
 static_assert(sizeof(AreaVplGpu) == 32);
 }  // namespace bounce::gpu
 #endif

@@ -12,6 +12,8 @@
 // disagree. A VPL the receiver faces away from, or that emits away from it, is not traced (bit 0).
 // One draw handles the 128 VPLs of bitstream layer u_batch (so any VPL count stays within the shader
 // loop budget, gpu/ShaderLimits.h); the host adds the draws (blending).
+// visibility=shadow-maps replaces the march by a lookup in the VPL's paraboloid shadow map (the
+// baseline of §5.4.6: 1024 rasterized 64^2 maps).
 // Host uniforms: u_level, u_levelOrigin, u_parentOrigin, u_parentSize, u_coarsest, u_batch, u_shade.
 // Inputs: eye pyramid geometry and normal (BINDING_TEX_TECH0, TECH1), cell flags (TECH2), VPLs
 // (BINDING_SSBO_TECH0), the voxel grid (march.glsl). In/out: bitstreams (image BINDING_IMG0),
@@ -19,6 +21,7 @@
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/area_light/area_common.glsl"
 #include "techniques/screen_voxels/march.glsl"
+#include "techniques/paraboloid/paraboloid.glsl"
 // The stencil must cull before this shader runs although it stores to images and buffers (GL would
 // otherwise run it on every fragment and test afterwards). Safe: no discard, no depth output.
 layout(early_fragment_tests) in;
@@ -28,6 +31,8 @@ layout(binding = BINDING_TEX_TECH2) uniform usampler2D s_flags;
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { AreaVplGpu u_vpls[]; };
 layout(std430, binding = BINDING_SSBO_TECH1) buffer StatsBlock { uint u_stats[AL_STAT_COUNT]; };
 layout(rgba32ui, binding = BINDING_IMG0) uniform uimage2DArray i_bits;
+// visibility=shadow-maps: VPL j's paraboloid map is layer j (one-sided lights; normal = the light's).
+layout(binding = BINDING_TEX_TECH3) uniform sampler2DArrayShadow s_vplMaps;
 uniform ivec2 u_parentOrigin;
 uniform ivec2 u_parentSize;
 uniform int u_coarsest;
@@ -89,6 +94,15 @@ void main() {
         int word = (m - first) / 32;
         uint bit = 1u << uint((m - first) % 32);
         bool visible = true;
+        if (visibility == AL_VIS_SHADOW_MAPS) {
+            // The rasterized baseline: a filtered lookup, so V is fractional at shadow edges.
+            float d = sqrt(r2);
+            float vis = paraboloidVisibility(s_vplMaps, float(s + subsets * m), -l, d, L.normal.xyz, L.edgeU.xyz / L.edgeU.w,
+                                             u_pass.shadow.w, u_pass.shadow.x);
+            ++raysCast;
+            irradiance += vis * v.radiance.rgb * (v.radiance.w * cosX * cosY / r2);
+            continue;
+        }
         if (visibility != AL_VIS_NONE) {
             if ((agree[word] & bit) != 0u) {
                 visible = (anyVisible[word] & bit) != 0u;

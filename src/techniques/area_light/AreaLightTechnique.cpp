@@ -62,6 +62,18 @@ namespace {
 constexpr int kLocalSize = 8;        // 2D compute passes' local size
 constexpr int kVplLocalSize = 64;    // vpls.comp
 constexpr int kMaxBitstreamLayers = 8;  // 1024 bits per cell: incremental visibility's storage bound
+// The shadow-map baseline (§5.4.6: "1024 rasterized 64^2 shadow maps"): at most that many maps.
+constexpr int kMaxVplShadowMaps = 1024;
+// Paraboloid maps as iir's: the VPL sits 1e-3 scene diagonals off the emitter so that the light's
+// mounting surface does not shadow it, and the depth range is the scene diagonal (no two points are
+// farther apart).
+constexpr float kVplMapOffsetInDiagonals = 1e-3f;
+constexpr float kVplMapFarInDiagonals = 1.01f;
+// Depth bias of the map lookups, as a fraction of the far distance (assumption; the thesis gives
+// none): 64^2 paraboloid texels span ~3 degrees, so receivers at grazing angles to a VPL differ from
+// their texels' depths by centimetres. On cornell-box-area at 1024 VPLs 1e-3 lost 42 % of the
+// receivers' energy to acne, 1e-2 14 %, 2e-2 (2 cm there) 7 %, as much as the voxels' over-occlusion.
+constexpr float kVplMapDepthBias = 2e-2f;
 
 gl::ProgramDesc fullscreen(std::string_view name, std::string_view fragment) {
     return {std::string(name), {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, std::string(fragment)}}};
@@ -76,7 +88,8 @@ void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
     v.field("coarsest", m_coarsest, "coarsest level of the multiresolution buffer (thesis: incremental visibility starts at 64^2)", 1, 4096);
     v.field("depthThreshold", m_thresholds.depth, "max relative depth derivative per pixel before a cell is refined (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_thresholds.normal, "normal component range, 0..2, before a cell is refined (assumption)", 0.0f, 2.0f);
-    v.field("visibility", m_visibility, "incremental: bitstream reuse (§5.3.3.2); brute: every VPL ray-marched at every cell (§5.3.3.1); none: V = 1 (§5.3.2)", kVisibilityModes);
+    v.field("visibility", m_visibility, "incremental: bitstream reuse (§5.3.3.2); brute: every VPL ray-marched at every cell (§5.3.3.1); none: V = 1 (§5.3.2); shadow-maps: a paraboloid shadow map per VPL (§5.4.6 baseline)", kVisibilityModes);
+    v.field("shadowMapSize", m_shadowMapSize, "visibility=shadow-maps: texels per side of each VPL's map (thesis 64)", 8, 1024);
     v.field("interleave", m_interleave, "2x2 interleaved VPL subsets (§5.3.3.2)");
     v.field("incrementalStencil", m_incrementalStencil, "refine cells lit discontinuously, coarse to fine (§5.3.4); off: depth/normal/lobe criteria only");
     v.field("colourThreshold", m_colourThreshold, "illumination discontinuity: neighbourhood range relative to the peak emitted radiance (Fig. 5.10: 0.005)", 0.0f, 1e9f);
@@ -128,6 +141,30 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
                          "interleave=on or visibility=brute",
                          m_perCell, kMaxBitstreamLayers * SV_BITS_PER_LAYER);
     BOUNCE_TRY_VOID(voxels::checkGrid({glm::ivec2(m_voxelColumns), m_voxelBits}, "voxelColumns", "voxelBits"));
+    if (m_visibility == "shadow-maps") {
+        if (m_vplCount > kMaxVplShadowMaps)
+            return makeError("setting visibility=shadow-maps renders one map per VPL, at most {} (the thesis's baseline); "
+                             "{} VPLs: use vplsPerSide <= 32", kMaxVplShadowMaps, m_vplCount);
+        for (size_t i : m_lightIndices)
+            if (ctx.scene.lights[i].twoSided)
+                return makeError("setting visibility=shadow-maps: light '{}' is two-sided; a paraboloid map covers one "
+                                 "hemisphere", ctx.scene.lights[i].name);
+        BOUNCE_TRY(m_paraboloid, gl::Program::build({"areaLight.vplShadowMap",
+                                                     {{GL_VERTEX_SHADER, "techniques/paraboloid/paraboloid.vert"},
+                                                      {GL_FRAGMENT_SHADER, "techniques/paraboloid/paraboloid.frag"}}}));
+        gl::TextureDesc maps;
+        maps.target = GL_TEXTURE_2D_ARRAY;
+        maps.format = GL_DEPTH_COMPONENT32F;
+        maps.width = maps.height = m_shadowMapSize;
+        maps.depth = m_vplCount;
+        maps.minFilter = maps.magFilter = GL_LINEAR;
+        m_vplMaps = gl::Texture::create("areaLight.vplShadowMaps", maps);
+        m_vplMaps.setCompareMode(true);
+        m_vplMapFbo = gl::Framebuffer::create("areaLight.vplShadowMap.fbo");
+    }
+    glm::vec3 lo, hi;
+    ctx.scene.bounds(0.0f, lo, hi);
+    m_sceneDiagonal = std::max(glm::length(hi - lo), 1e-3f);
 
     BOUNCE_TRY(m_pyramid, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_diffuse, nichols::MultiresBuffer::create());
@@ -168,7 +205,10 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
         g.texture = glm::vec4(tex.width(), tex.height(), static_cast<float>(k) * m_vplsPerSide * m_vplsPerSide, m_vplsPerSide);
         m_peakRadiance = std::max({m_peakRadiance, l.radiance.r, l.radiance.g, l.radiance.b});
     }
-    const float visibility = m_visibility == "none" ? AL_VIS_NONE : m_visibility == "brute" ? AL_VIS_BRUTE : AL_VIS_INCREMENTAL;
+    const float visibility = m_visibility == "none"          ? AL_VIS_NONE
+                             : m_visibility == "brute"       ? AL_VIS_BRUTE
+                             : m_visibility == "shadow-maps" ? AL_VIS_SHADOW_MAPS
+                                                             : AL_VIS_INCREMENTAL;
     u.counts = glm::vec4(static_cast<float>(m_lightIndices.size()), m_vplCount, m_perCell, m_interleave ? 4 : 1);
     // The bias in metres: rayBias voxels of the larger of a slice's depth and a column's width at the
     // middle of the grid's depth range.
@@ -183,6 +223,7 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     const float pixelAngle = 2.0f / (ctx.camera.clipFromView[1][1] * static_cast<float>(m_size.y));
     u.lobe = glm::vec4(m_lobeThreshold, m_lobeVpls, m_lobeSpacing, pixelAngle);
     u.geometry = glm::vec4(m_interleaveNormal, m_interleaveDepth, 0.0f, m_layers);
+    u.shadow = glm::vec4(kVplMapDepthBias, 0.0f, 0.0f, kVplMapFarInDiagonals * m_sceneDiagonal);
     m_passUbo.upload(0, sizeof(u), &u);
     m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
 }
@@ -213,6 +254,49 @@ void AreaLightTechnique::buildLobePyramid(FrameContext& ctx) {
         glDispatchCompute(groups(s.x), groups(s.y), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
+}
+
+void AreaLightTechnique::renderVplShadowMaps(FrameContext& ctx) {
+    // The VPL positions of vpls.comp, on the CPU: the maps are drawn one per VPL.
+    const std::vector<Light>& lights = ctx.sceneGpu.lights();
+    const float offset = kVplMapOffsetInDiagonals * m_sceneDiagonal;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glEnable(GL_CLIP_DISTANCE0);
+    m_paraboloid.use();
+    m_paraboloid.set("u_far", kVplMapFarInDiagonals * m_sceneDiagonal);
+    m_paraboloid.set("u_size", glm::vec2(static_cast<float>(m_shadowMapSize)));
+    render::View view;
+    view.viewport = glm::ivec2(m_shadowMapSize);
+    const float one = 1.0f;
+    const int n = m_vplsPerSide;
+    for (size_t k = 0; k < m_lightIndices.size(); ++k) {
+        const Light& l = lights[m_lightIndices[k]];
+        const glm::vec3 normal = l.areaNormal(), t = glm::normalize(l.edgeU), b = glm::cross(normal, t);
+        glm::mat4 vplFromWorld(1.0f);
+        for (int c = 0; c < 3; ++c) {  // rows t, b, n (GLM is column-major: [col][row])
+            vplFromWorld[c][0] = t[c];
+            vplFromWorld[c][1] = b[c];
+            vplFromWorld[c][2] = normal[c];
+        }
+        m_paraboloid.set("u_vplFromWorld", vplFromWorld);
+        for (int i = 0; i < n * n; ++i) {
+            const glm::vec2 uv = (glm::vec2(i % n, i / n) + 0.5f) / static_cast<float>(n);
+            const glm::vec3 p = l.position + (uv.x - 0.5f) * l.edgeU + (uv.y - 0.5f) * l.edgeV;
+            m_paraboloid.set("u_vplPosition", p + normal * offset);
+            m_vplMapFbo.attachLayer(GL_DEPTH_ATTACHMENT, m_vplMaps, static_cast<int>(k) * n * n + i);
+            glNamedFramebufferDrawBuffer(m_vplMapFbo.id(), GL_NONE);
+            BOUNCE_CHECK(m_vplMapFbo.complete(), "area-light VPL shadow map framebuffer");
+            m_vplMapFbo.bind();
+            glClearNamedFramebufferfv(m_vplMapFbo.id(), GL_DEPTH, 0, &one);
+            ctx.drawer.draw(view);
+        }
+    }
+    glDisable(GL_CLIP_DISTANCE0);
+    glDisable(GL_DEPTH_TEST);
 }
 
 AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer,
@@ -301,6 +385,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             } else {
                 m_flags.bind(BINDING_TEX_TECH2);
                 m_bits.bindImage(BINDING_IMG0, GL_READ_WRITE, 0, true);
+                if (m_vplMaps) m_vplMaps.bind(BINDING_TEX_TECH3);
                 gather.set("u_parentOrigin", parentOrigin);
                 gather.set("u_parentSize", parentSize);
                 gather.set("u_coarsest", coarsest);
@@ -373,6 +458,10 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
         m_voxels->build(ctx.drawer, ctx.camera, {glm::ivec2(m_voxelColumns), m_voxelBits, m_voxelFootprint});
     }
     updateUniforms(ctx);
+    if (m_visibility == "shadow-maps") {
+        auto s = ctx.timers.scope("vpl-shadow-maps");
+        renderVplShadowMaps(ctx);
+    }
     {
         auto s = ctx.timers.scope("vpls");
         m_vpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);

@@ -23,7 +23,7 @@ public:
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     bool ownsDirect() const override { return true; }
 
-    static constexpr std::array<std::string_view, 3> kVisibilityModes{"incremental", "brute", "none"};
+    static constexpr std::array<std::string_view, 4> kVisibilityModes{"incremental", "brute", "none", "shadow-maps"};
 
     // For tests: the multiresolution buffers of the last frame.
     const nichols::MultiresBuffer& diffuseBuffer() const { return *m_diffuse; }
@@ -37,6 +37,7 @@ private:
     };
     void updateUniforms(FrameContext& ctx);
     void buildLobePyramid(FrameContext& ctx);
+    void renderVplShadowMaps(FrameContext& ctx);
     // The coarse-to-fine level loop of §5.3.4 over one buffer (diffuse or specular).
     PassCounts renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer, bool specular);
 
@@ -61,6 +62,7 @@ private:
     float m_lobeSpacing = 1.0f;        // refine while the cell's angular spread exceeds this x lobe half-angle
     float m_interleaveNormal = 0.9f;   // resolve: neighbours on the same surface (assumption)
     float m_interleaveDepth = 0.05f;   // resolve: plane distance / eye distance (assumption)
+    int m_shadowMapSize = 64;          // §5.4.6 baseline: 1024 rasterized 64^2 shadow maps
 
     std::optional<nichols::MinMaxPyramid> m_pyramid;
     std::optional<nichols::MultiresBuffer> m_diffuse, m_specularBuffer;
@@ -68,7 +70,11 @@ private:
     gl::Program m_vplProgram, m_lobeProgram, m_classify, m_stencil, m_gatherDiffuse, m_gatherSpecular, m_resolve,
         m_discontinuity, m_final;
     gl::Buffer m_passUbo, m_vpls, m_stats;
-    gl::Texture m_lobe, m_flags, m_bits, m_subsets;
+    gl::Texture m_lobe, m_flags, m_bits, m_subsets, m_vplMaps;
+    gl::Program m_paraboloid;
+    gl::Framebuffer m_vplMapFbo;
+    std::vector<gpu::AreaVplGpu> m_vplCpu;  // shadow-map baseline: the VPL positions to render maps from
+    float m_sceneDiagonal = 1.0f;
     gl::Framebuffer m_finalFbo, m_clearFbo;
     gpu::AreaPassUniforms m_uniforms{};
     std::vector<size_t> m_lightIndices;  // scene light index of each area light shaded
