@@ -198,6 +198,17 @@ def area_light_table(rec, path):
               "| scene | relMSE | HDR-FLIP | frame ms 256 | frame ms 16,384 |", "|---|---|---|---|---|"]
     for n, e in rec["vpls"].items():
         lines.append(f"| {n} | {e['256vs16384']['relMse']:.5f} | {e['256vs16384']['flipHdr']:.4f} | {rng(e['256']['frameMs'])} | {rng(e['16384']['frameMs'])} |")
+    if "baseline" in rec:
+        bl = rec["baseline"]
+        fr_ = bl["frameRatioPerRep"]
+        lines += ["", f"Visibility at {bl['vpls']} VPLs, {bl['size']}², against the rasterized baseline of §5.4.6 (one 64² paraboloid shadow map per VPL), "
+                  "interleaved; error against `bounce reference --bounces 0`:", "",
+                  "| visibility | relMSE | HDR-FLIP | frame ms | gather ms | voxelize / maps ms |", "|---|---|---|---|---|---|"]
+        for m in ["incremental", "brute", "shadow-maps"]:
+            v = bl[m]
+            extra = rng(v["mapsMs"]) if m == "shadow-maps" else rng(v["voxelizeMs"])
+            lines.append(f"| {m} | {v['vsReference']['relMse']:.4f} | {v['vsReference']['flipHdr']:.4f} | {rng(v['frameMs'])} | {rng(v['visibilityMs'])} | {extra} |")
+        lines.append(f"| shadow maps / incremental frame time | | | {min(fr_):.2f}–{max(fr_):.2f}× per rep | | |")
     lines += ["", f"Colour threshold at {rec['thresholdSize']}² (thesis: the threshold dominates the cost when low, 0.005):", "",
               "| colourThreshold | frame ms | rendered cells | rays cast |", "|---|---|---|---|"]
     for t, v in thr.items():

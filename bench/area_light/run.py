@@ -15,6 +15,8 @@ R8 rows (summary ../shared/specs, result R8; thesis §5.4):
              sampling differs): the 256-VPL image against the 16,384-VPL one, on the diffuse Cornell
              box and on a bouncing-square light (thesis Fig. 5.15: indistinguishable for diffuse
              surfaces, not for the square).
+  baseline   at 1024 VPLs: incremental and brute-force voxel visibility against the rasterized
+             baseline of §5.4.6 (one 64^2 paraboloid shadow map per VPL), error and time.
   threshold  frame ms and rendered fragments against the colour threshold (thesis: it dominates the
              cost when low, 0.005).
 Frame times: GPU scope of the technique, median over the frames after the first (the first compiles
@@ -171,6 +173,34 @@ def main():
             vpls[name] = entry
         rec["vpls"] = vpls
         print("vpls", {n: round(e["256vs16384"]["relMse"], 5) for n, e in vpls.items()}, flush=True)
+
+    # The rasterized baseline (§5.4.6: 1024 64^2 shadow maps) against the voxel visibility at 1024 VPLs.
+    with tempfile.TemporaryDirectory() as tmp:
+        ref = os.path.join(tmp, "ref.exr")
+        refcmd = reference(bounce, CORNELL, size, ref, 256 if quick else 1024, FRAMES - 1)
+        modes = {"incremental": {}, "brute": {"visibility": "brute"}, "shadow-maps": {"visibility": "shadow-maps"}}
+        runs = {m: [] for m in modes}
+        errs = {}
+        cmds = {}
+        for rep in range(reps):
+            for m, st in modes.items():
+                out = os.path.join(tmp, f"{m}.exr")
+                r, c = render(bounce, CORNELL, size, {"vplsPerSide": "32", **st}, out)
+                runs[m].append(r)
+                cmds[m] = c
+                if rep == 0:
+                    errs[m] = compare(bounce, out, ref)
+        base = {"size": size, "vpls": 1024, "referenceCommand": refcmd}
+        for m in modes:
+            base[m] = {"command": cmds[m], "vsReference": errs[m],
+                       "frameMs": summary([v for r in runs[m] for v in gpu(r, "area-light")]),
+                       "visibilityMs": summary([v for r in runs[m] for v in gpu(r, "area-light/gather-diffuse")]),
+                       "mapsMs": summary([v for r in runs[m] for v in gpu(r, "area-light/vpl-shadow-maps")]),
+                       "voxelizeMs": summary([v for r in runs[m] for v in gpu(r, "area-light/voxelize")])}
+        base["frameRatioPerRep"] = [statistics.median(gpu(b, "area-light")) / statistics.median(gpu(a, "area-light"))
+                                    for a, b in zip(runs["incremental"], runs["shadow-maps"])]
+        rec["baseline"] = base
+        print("baseline", {m: round(base[m]["frameMs"]["median"], 1) for m in modes}, flush=True)
 
     # Colour threshold.
     thr = {}

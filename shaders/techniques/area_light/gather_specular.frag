@@ -7,16 +7,18 @@
 // holds fewer than u_pass.lobe.y (thesis: 9) VPLs would show single VPL reflections; the light texture
 // is then sampled directly 25 times on a regular 5x5 grid centred where R meets the light, spaced by
 // the lobe footprint / 5 and read at the mip level of that spacing (§5.3.2.1). Visibility: each VPL or
-// sample is ray-marched (binary; the variance query of §5.3.3.3 is not implemented).
+// sample is ray-marched (binary), or, for the lobe samples with u_variance, shaded with the variance
+// visibility of §5.3.3.3 from the moments variance_moments.frag stored.
 // VPLs in the lobe: the footprint is the lobe cone's cross-section where R meets the light plane,
 // radius t tan(theta) over |cos(R, N_light)| (an assumption; the thesis does not say how it counts).
 // One draw sums VPLs [u_vplFirst, u_vplEnd); the 5x5 samples go with the first draw.
-// Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd. Inputs: eye pyramid geometry, normal
+// Host uniforms: u_level, u_levelOrigin, u_levelSize, u_vplFirst, u_vplEnd, u_variance. Inputs: eye pyramid geometry, normal
 // and lobe pyramid (BINDING_TEX_TECH0..2), light textures (units kLightTexture0 + i), VPLs
 // (BINDING_SSBO_TECH0), u_frame, voxel grid. Output: specular radiance / F (alpha 1 = rendered).
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/area_light/area_common.glsl"
 #include "techniques/area_light/lobe.glsl"
+#include "techniques/area_light/lobe_samples.glsl"
 #include "techniques/screen_voxels/march.glsl"
 #include "common/brdf.glsl"
 #include "common/frame.glsl"
@@ -34,7 +36,35 @@ uniform uint u_vplFirst;
 uniform uint u_vplEnd;
 layout(location = 0) out vec4 o_radiance;
 
-const int kLobeGrid = 5;  // §5.3.2.1: 5 x 5 = 25 lobe-centred samples
+// Variance visibility (§5.3.3.3): the moments variance_moments.frag wrote at this level.
+layout(rgba32f, binding = BINDING_IMG0) readonly uniform image2DArray i_moments;
+uniform bool u_variance;
+uniform ivec2 u_levelSize;
+
+// Visibility of lobe query k of light i from the moments of the same-parity cells (the ones that sent
+// query k) in the 3x3 neighbourhood: the screen-space blur of §5.3.3.3, then Chebyshev's one-sided
+// bound p = sigma^2 / (sigma^2 + (t - mu)^2) for the receiver at t = 1 (the light, in ray fractions)
+// beyond the mean occluder distance mu (Donnelly & Lauritzen 2006). No neighbour query: 1.
+float varianceVisibility(ivec2 cell, int i, int k) {
+    int s = k % 4, j = k / 4;
+    vec2 m = vec2(0.0);
+    float count = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = cell + ivec2(dx, dy);
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_levelSize))) continue;
+            if ((q.x & 1) + 2 * (q.y & 1) != s) continue;
+            vec4 t = imageLoad(i_moments, ivec3(u_levelOrigin + q, 3 * i + j / 2));
+            vec2 d = (j % 2) == 0 ? t.xy : t.zw;
+            if (d.x < 0.0) continue;  // not sent (off the light, or a broad lobe there)
+            m += d;
+            count += 1.0;
+        }
+    if (count == 0.0) return 1.0;
+    m /= count;
+    float mu = m.x, variance = max(m.y - mu * mu, 1e-6);
+    return mu >= 1.0 - 1e-4 ? 1.0 : variance / (variance + (1.0 - mu) * (1.0 - mu));
+}
 
 vec3 lightTexel(int i, vec2 uv, float lod) {
     // Constant sampler names in each branch: no sampler indexing (llvmpipe, GLSL 4.50 rules).
@@ -55,14 +85,14 @@ float specularCos(vec3 n, vec3 l, vec3 v, float alpha) {
 vec3 origin;
 
 vec3 sampleTerm(vec3 x, vec3 n, vec3 v, float alpha, AreaLightGpu L, vec3 y, vec3 radiance, float area,
-                inout uint raysCast) {
+                inout uint raysCast, bool march) {
     vec3 d = y - x;
     float r2 = max(dot(d, d), 1e-12);
     vec3 l = d * inversesqrt(r2);
     float cosY = emitterCosine(L, l);
     float f = specularCos(n, l, v, alpha);
     if (cosY <= 0.0 || f <= 0.0) return vec3(0.0);
-    if (int(u_pass.march.w) != AL_VIS_NONE) {
+    if (march && int(u_pass.march.w) != AL_VIS_NONE) {
         ++raysCast;
         if (voxelMarch(origin, rayEnd(L, y, x), int(u_pass.march.x), int(u_pass.march.y)) < 1.0) return vec3(0.0);
     }
@@ -86,34 +116,31 @@ void main() {
         AreaLightGpu L = u_pass.lights[i];
         int side = int(L.texture.w);
         uint firstVpl = uint(L.texture.z), endVpl = firstVpl + uint(side * side);
-        // Where R meets the light's plane, and the lobe's footprint there.
-        float denom = dot(R, L.normal.xyz);
-        float t = abs(denom) > 1e-6 ? dot(L.centre.xyz - x, L.normal.xyz) / denom : -1.0;
-        float footprint = t > 0.0 ? t * tan(min(theta, 1.5)) : 0.0;  // radius (m)
-        float cellArea = L.normal.w / float(side * side);
-        float vplsInLobe = t > 0.0 ? kPi * footprint * footprint / max(abs(denom), 1e-3) / cellArea : 1e9;
-        if (vplsInLobe >= u_pass.lobe.y) {
+        LobeFootprint f = lobeFootprint(L, x, R, theta);
+        if (f.vplsInLobe >= u_pass.lobe.y) {
             uint a = max(firstVpl, u_vplFirst), b = min(endVpl, u_vplEnd);
             for (uint j = a; j < b; ++j) {
                 AreaVplGpu p = u_vpls[j];
-                radiance += sampleTerm(x, n, v, alpha, L, p.position.xyz, p.radiance.rgb, p.radiance.w, raysCast);
+                radiance += sampleTerm(x, n, v, alpha, L, p.position.xyz, p.radiance.rgb, p.radiance.w, raysCast, true);
             }
         } else if (u_vplFirst == 0u) {
             ++lobeSampled;
-            vec3 eu = L.edgeU.xyz / L.edgeU.w, ev = L.edgeV.xyz / L.edgeV.w;
-            vec3 c = x + t * R;
-            float h = 2.0 * footprint / float(kLobeGrid);  // sample spacing (m)
+            float h = 2.0 * f.radius / float(kLobeGrid);  // sample spacing (m)
             float texel = max(L.edgeU.w / L.texture.x, L.edgeV.w / L.texture.y);
             float lod = max(log2(max(h, 1e-9) / texel), 0.0);
-            for (int b = 0; b < kLobeGrid; ++b)
-                for (int a = 0; a < kLobeGrid; ++a) {
-                    vec3 y = c + (float(a) - 2.0) * h * eu + (float(b) - 2.0) * h * ev;
-                    vec3 dy = y - L.centre.xyz;
-                    vec2 uv = vec2(dot(dy, eu) / L.edgeU.w, dot(dy, ev) / L.edgeV.w) + 0.5;
-                    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;
-                    vec3 le = L.radiance.rgb * (L.radiance.w > 0.5 ? lightTexel(i, uv, lod) : vec3(1.0));
-                    radiance += sampleTerm(x, n, v, alpha, L, y, le, h * h, raysCast);
+            for (int k = 0; k < kLobeGrid * kLobeGrid; ++k) {
+                vec3 y;
+                vec2 uv;
+                if (!lobeSamplePoint(L, x, R, f, k, y, uv)) continue;
+                vec3 le = L.radiance.rgb * (L.radiance.w > 0.5 ? lightTexel(i, uv, lod) : vec3(1.0));
+                if (u_variance && int(u_pass.march.w) != AL_VIS_NONE) {
+                    // The corner without a query (k = 24) takes its row neighbour's visibility.
+                    float vis = varianceVisibility(cell, i, min(k, kLobeQueries - 1));
+                    radiance += vis * sampleTerm(x, n, v, alpha, L, y, le, h * h, raysCast, false);
+                } else {
+                    radiance += sampleTerm(x, n, v, alpha, L, y, le, h * h, raysCast, true);
                 }
+            }
         }
     }
     atomicAdd(u_stats[AL_STAT_RAYS_CAST], raysCast);

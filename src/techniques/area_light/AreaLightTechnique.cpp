@@ -35,8 +35,10 @@
 // Deviations and assumptions (docs/techniques/area-light.md): bounce's BRDF is GGX, so the "Phong"
 // pass evaluates the GGX specular lobe and takes its width from the equivalent Phong exponent;
 // the specular pass multiplies a per-pixel Schlick Fresnel at the end; the specular pass ray-marches
-// its VPLs and lobe samples without bitstreams, and the variance visibility of §5.3.3.3 is not
-// implemented; bitstreams are RGBA32UI image layers of 128 bits (the thesis: a 4 x 16-bit target for
+// its VPLs without bitstreams; the lobe samples of sharp lobes take the variance visibility of
+// §5.3.3.3 (24 queries of occluder-distance moments as ray fractions, 2x2 interleaved, 3x3 blur,
+// Chebyshev); visibility=shadow-maps is §5.4.6's rasterized baseline (a 64^2 paraboloid map per
+// VPL, "vpl-shadow-maps"); bitstreams are RGBA32UI image layers of 128 bits (the thesis: a 4 x 16-bit target for
 // 64 bits) written with image stores; the colour threshold compares radiance relative to the lights'
 // peak radiance; thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
 // voxel depth range (the scene bounds in view space) are assumptions (the thesis gives none).
@@ -101,6 +103,7 @@ void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rayThickness", m_rayThickness, "extra depth bits tested each side of a step (the thick ray; assumption)", 0, 64);
     v.field("rayBias", m_rayBias, "ray origin offset along the normal, in voxels (assumption; Fig. 5.12)", 0.0f, 64.0f);
     v.field("specular", m_specular, "separate specular (Phong) gather pass (§5.3.2.1)");
+    v.field("varianceVisibility", m_varianceVisibility, "sharp lobes: variance visibility queries (24 moments, 3x3 blur, Chebyshev; §5.3.3.3); off: a binary ray per lobe sample");
     v.field("lobeThreshold", m_lobeThreshold, "fraction of the lobe's peak that bounds the lobe (culling, refinement, footprint; assumption)", 1e-4f, 0.999f);
     v.field("lobeVpls", m_lobeVpls, "fewer VPLs than this in the lobe: 5x5 lobe-centred texture samples (thesis 9)", 0.0f, 1e9f);
     v.field("lobeSpacing", m_lobeSpacing, "refine while a cell's angular spread exceeds this times the lobe half-angle (assumption)", 1e-3f, 1e3f);
@@ -179,6 +182,7 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY(m_gatherDiffuse, gl::Program::build(fullscreen("areaLight.gatherDiffuse", "techniques/area_light/gather_diffuse.frag")));
     BOUNCE_TRY(m_gatherSpecular, gl::Program::build(fullscreen("areaLight.gatherSpecular", "techniques/area_light/gather_specular.frag")));
     BOUNCE_TRY(m_final, gl::Program::build(fullscreen("areaLight.final", "techniques/area_light/final.frag")));
+    BOUNCE_TRY(m_moments, gl::Program::build(fullscreen("areaLight.varianceMoments", "techniques/area_light/variance_moments.frag")));
     m_passUbo = gl::Buffer::create("areaLight.pass", sizeof(gpu::AreaPassUniforms));
     m_vpls = gl::Buffer::create("areaLight.vpls", sizeof(gpu::AreaVplGpu) * static_cast<size_t>(m_vplCount));
     m_stats = gl::Buffer::create("areaLight.stats", sizeof(uint32_t) * AL_STAT_COUNT);
@@ -376,6 +380,28 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                     ctx.lights.areaTexture(m_lightIndices[std::min(i, m_lightIndices.size() - 1)]).bind(units[i]);
                 // One loop iteration per VPL plus up to raySteps march iterations for each: draws of at most
                 // half the shader loop budget (gpu/ShaderLimits.h).
+                const bool variance = m_varianceVisibility && m_visibility != "none";
+                if (variance) {
+                    // Three RGBA32F layers per light: six queries' (d, d^2) per cell (§5.3.3.3).
+                    const int layers = 3 * static_cast<int>(m_lightIndices.size());
+                    if (!m_momentsTexture || m_momentsTexture.width() != atlas.x || m_momentsTexture.height() != atlas.y) {
+                        gl::TextureDesc d;
+                        d.target = GL_TEXTURE_2D_ARRAY;
+                        d.width = atlas.x;
+                        d.height = atlas.y;
+                        d.depth = layers;
+                        d.format = GL_RGBA32F;
+                        d.minFilter = d.magFilter = GL_NEAREST;
+                        m_momentsTexture = gl::Texture::create("areaLight.varianceMoments", d);
+                    }
+                    m_momentsTexture.bindImage(BINDING_IMG0, GL_READ_WRITE, 0, true);
+                    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+                    buffer.drawLevel(k, m_moments, 1);
+                    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+                    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                }
+                gather.set("u_variance", variance ? 1 : 0);
+                gather.set("u_levelSize", size);
                 const int perDraw = std::max(1, gl::kShaderLoopIterationBudget / 2 / (m_raySteps + 2));
                 const int batches = (m_vplCount + perDraw - 1) / perDraw;
                 counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, batches, [&](int b) {

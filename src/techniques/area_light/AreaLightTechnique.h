@@ -57,6 +57,7 @@ private:
     int m_rayThickness = 0;            // extra bits each side of a step's slice span (assumption; 1 over-occludes, docs)
     float m_rayBias = 1.5f;            // voxels (assumption; "bias", Fig. 5.12)
     bool m_specular = true;            // §5.3.2.1: separate Phong pass
+    bool m_varianceVisibility = true;  // §5.3.3.3: variance queries for the lobe samples of sharp lobes
     float m_lobeThreshold = 0.1f;      // fraction of the lobe peak bounding the lobe (assumption)
     float m_lobeVpls = 9.0f;           // §5.3.2.1: fewer than 9 VPLs in the lobe -> 5 x 5 samples
     float m_lobeSpacing = 1.0f;        // refine while the cell's angular spread exceeds this x lobe half-angle
@@ -71,7 +72,8 @@ private:
         m_discontinuity, m_final;
     gl::Buffer m_passUbo, m_vpls, m_stats;
     gl::Texture m_lobe, m_flags, m_bits, m_subsets, m_vplMaps;
-    gl::Program m_paraboloid;
+    gl::Program m_paraboloid, m_moments;
+    gl::Texture m_momentsTexture;
     gl::Framebuffer m_vplMapFbo;
     std::vector<gpu::AreaVplGpu> m_vplCpu;  // shadow-map baseline: the VPL positions to render maps from
     float m_sceneDiagonal = 1.0f;
