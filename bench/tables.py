@@ -198,6 +198,13 @@ def area_light_table(rec, path):
               "| scene | relMSE | HDR-FLIP | frame ms 256 | frame ms 16,384 |", "|---|---|---|---|---|"]
     for n, e in rec["vpls"].items():
         lines.append(f"| {n} | {e['256vs16384']['relMse']:.5f} | {e['256vs16384']['flipHdr']:.4f} | {rng(e['256']['frameMs'])} | {rng(e['16384']['frameMs'])} |")
+    if "quality" in rec:
+        qs = {k: v for k, v in rec["quality"].items() if isinstance(v, dict)}
+        lines += ["", f"Quality at {rec['quality']['size']}² against `bounce reference --bounces 0` (relMSE / HDR-FLIP):", "",
+                  "| scene | area-light | area-light, V = 1 | shared direct pass (centre shadow, mean texture) |", "|---|---|---|---|"]
+        for n, e in qs.items():
+            lines.append(f"| {n} | " + " | ".join(f"{e[k]['vsReference']['relMse']:.4f} / {e[k]['vsReference']['flipHdr']:.4f}"
+                                                for k in ["area-light", "no visibility", "direct pass"]) + " |")
     if "baseline" in rec:
         bl = rec["baseline"]
         fr_ = bl["frameRatioPerRep"]

@@ -15,6 +15,8 @@ R8 rows (summary ../shared/specs, result R8; thesis §5.4):
              sampling differs): the 256-VPL image against the 16,384-VPL one, on the diffuse Cornell
              box and on a bouncing-square light (thesis Fig. 5.15: indistinguishable for diffuse
              surfaces, not for the square).
+  quality    relMSE / HDR-FLIP against `bounce reference --bounces 0` on cornell-box-area and the
+             textured screen scene (area-screen), beside V = 1 and the shared centre-shadowed direct pass.
   baseline   at 1024 VPLs: incremental and brute-force voxel visibility against the rasterized
              baseline of §5.4.6 (one 64^2 paraboloid shadow map per VPL), error and time.
   threshold  frame ms and rendered fragments against the colour threshold (thesis: it dominates the
@@ -173,6 +175,30 @@ def main():
             vpls[name] = entry
         rec["vpls"] = vpls
         print("vpls", {n: round(e["256vs16384"]["relMse"], 5) for n, e in vpls.items()}, flush=True)
+
+    # Quality against the path tracer's direct light, on the Cornell box and the textured screen scene.
+    with tempfile.TemporaryDirectory() as tmp:
+        quality = {"size": size}
+        cases = {"cornell-box-area": CORNELL}
+        if has_scene(bounce, "area-screen"):
+            cases["area-screen"] = {"scene": "area-screen", "params": []}
+        for name, case in cases.items():
+            ref = os.path.join(tmp, f"{name}-ref.exr")
+            refcmd = reference(bounce, case, size, ref, 256 if quick else 1024, FRAMES - 1)
+            entry = {"referenceCommand": refcmd}
+            for label, st in {"area-light": {}, "no visibility": {"visibility": "none"}}.items():
+                out = os.path.join(tmp, f"{name}-{label}.exr")
+                r, c = render(bounce, case, size, st, out)
+                entry[label] = {"command": c, "vsReference": compare(bounce, out, ref), "frameMs": summary(gpu(r, "area-light"))}
+            # The shared direct pass (area lights shadowed from their centre, textures as their mean).
+            out = os.path.join(tmp, f"{name}-direct.exr")
+            cmd = [bounce, "render", "--scene", case["scene"], "--technique", "direct", "--size", f"{size}x{size}",
+                   "--frames", str(FRAMES), "--component", "direct", "--out", out] + sum((["--scene-param", p] for p in case["params"]), [])
+            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            entry["direct pass"] = {"command": rel(cmd), "vsReference": compare(bounce, out, ref)}
+            quality[name] = entry
+        rec["quality"] = quality
+        print("quality", {n: {k: round(v["vsReference"]["relMse"], 4) for k, v in e.items() if isinstance(v, dict)} for n, e in quality.items() if isinstance(e, dict)}, flush=True)
 
     # The rasterized baseline (§5.4.6: 1024 64^2 shadow maps) against the voxel visibility at 1024 VPLs.
     with tempfile.TemporaryDirectory() as tmp:
