@@ -8,6 +8,11 @@
 
 namespace bounce {
 
+// Largest procedural area-light texture, texels per side. The GPU light set uploads a light's texture
+// with a full RGBA32F mip chain whenever it changes (every frame for the bouncing square): 2048^2 is
+// 85 MB per upload, already far more detail than the 16 x 16 VPLs the area-light technique samples.
+inline constexpr int kMaxAreaTextureResolution = 2048;
+
 // The multiplier image of `light` at time t (seconds), or nullptr for an untextured light (uniform 1).
 // A procedural frame is rendered into `scratch` and the returned pointer points there; an image frame
 // points into scene.textures. The light's texture must be valid (validateScene checks it).
