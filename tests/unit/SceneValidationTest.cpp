@@ -205,7 +205,7 @@ TEST(FinalizeScene, RejectsBadAreaLightTextures) {
             textured(s);
             s.textures[0].image.at(1, 0).g = -0.5f;
         },
-        {"bulb", "negative texel"});
+        {"bulb", "negative or non-finite texel"});
     expectRejected(
         [&](Scene& s) {
             textured(s);
