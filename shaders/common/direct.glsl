@@ -1,7 +1,7 @@
 // Unshadowed direct radiance of one light at a G-buffer surface (docs/rendering.md): reflected
 // radiance L_o = brdf * cos * E for punctual lights (common/lighting.glsl), and for area lights the
 // diffuse lobe times the exact polygon irradiance plus the specular lobe evaluated towards the centre
-// with the rectangle as a point of intensity L*A*cos(theta_light). The caller multiplies by its
+// with the rectangle as a point of intensity L*A*cos(theta_light) (|cos| for a two-sided light). The caller multiplies by its
 // visibility (shadow maps in render/direct_light.frag, a cone in techniques/vct).
 #ifndef BOUNCE_DIRECT_GLSL
 #define BOUNCE_DIRECT_GLSL
@@ -21,7 +21,9 @@ vec3 unshadowedDirectRadiance(LightGpu L, Surface s, vec3 eye) {
             vec3 l = d * inversesqrt(r2);
             vec3 nl = normalize(cross(L.edgeU.xyz, L.edgeV.xyz));
             float area = length(cross(L.edgeU.xyz, L.edgeV.xyz));
-            vec3 intensity = L.emission.rgb * area * max(dot(-l, nl), 0.0);
+            // Two-sided: the face towards the receiver emits, so the cosine at the light is |cos|.
+            float cosLight = areaTwoSided(L) ? abs(dot(-l, nl)) : max(dot(-l, nl), 0.0);
+            vec3 intensity = L.emission.rgb * area * cosLight;
             vec3 specularOnly = brdfCos(s.normal, l, v, s.albedo, s.roughness, s.metallic, s.specularF0) -
                                 diffuse * max(dot(s.normal, l), 0.0);
             radiance += max(specularOnly, vec3(0.0)) * intensity / r2;

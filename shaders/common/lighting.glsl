@@ -2,9 +2,12 @@
 //   point:       E = I cos(theta) / r^2
 //   spot:        I(alpha) = I0 cos^n(alpha) for alpha < cutoff (cos clamped at 0), else 0
 //   directional: E = E_perp cos(theta)
-//   area:        one-sided Lambertian rectangle of radiance L; diffuse irradiance from the exact
-//                polygon (Lambert's contour) formula E = L/2 sum_i theta_i (n . gamma_i) after
-//                clipping the rectangle to the receiver's hemisphere; visibility from the centre.
+//   area:        Lambertian rectangle of radiance L (its texture's mean: techniques other than
+//                area-light shade it uniformly), emitting from the side of cross(edgeU, edgeV) or, when
+//                two-sided (AREA_TWO_SIDED), from both; diffuse irradiance from the exact polygon
+//                (Lambert's contour) formula E = L/2 |sum_i theta_i (n . gamma_i)| after clipping the
+//                rectangle to the receiver's hemisphere, which holds on either side of the light;
+//                visibility from the centre.
 // Inputs: u_light (BINDING_UBO_LIGHT), s_shadow / s_shadowCube (BINDING_TEX_SHADOW[_CUBE]).
 #include "common/shared.h"
 #include "common/constants.glsl"
@@ -61,11 +64,15 @@ float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCub
 
 float shadowVisibility(LightGpu L, vec3 x, vec3 n) { return shadowVisibilityFrom(L, s_shadow, s_shadowCube, x, n); }
 
-// Irradiance at x (normal n) from the one-sided rectangle, unshadowed.
+bool areaTwoSided(LightGpu L) { return (int(L.area.w + 0.5) & AREA_TWO_SIDED) != 0; }
+
+// Irradiance at x (normal n) from the rectangle, unshadowed: from its emitting face, or from the face
+// on x's side for a two-sided light (both faces emit the same radiance).
 vec3 areaIrradiance(LightGpu L, vec3 x, vec3 n) {
     vec3 nl = normalize(cross(L.edgeU.xyz, L.edgeV.xyz));
     vec3 c = L.position.xyz;
-    if (dot(x - c, nl) <= 0.0) return vec3(0.0);  // behind the emitting side
+    float side = dot(x - c, nl);
+    if (side == 0.0 || (side < 0.0 && !areaTwoSided(L))) return vec3(0.0);  // in its plane, or behind a one-sided light
     vec3 hu = 0.5 * L.edgeU.xyz, hv = 0.5 * L.edgeV.xyz;
     vec3 quad[4] = vec3[4](c - hu - hv - x, c + hu - hv - x, c + hu + hv - x, c - hu + hv - x);
     // Sutherland-Hodgman clip against the receiver's tangent plane (keep dot(n, v) >= 0).

@@ -56,8 +56,9 @@ bool isFlat(const SceneGeometry& g) {
     return true;
 }
 
-// Area lights are one-sided emitters that are not meshes (docs/scene.md "Lights"): seen from behind
-// they do not exist, for every kind of ray. Embree calls this for candidate hits on their rectangles.
+// One-sided area lights are emitters that are not meshes (docs/scene.md "Lights"): seen from behind
+// they do not exist, for every kind of ray. Embree calls this for candidate hits on their rectangles
+// (two-sided lights have no filter: both sides are there).
 void passThroughBackOfAreaLight(const RTCFilterFunctionNArguments* args) {
     const auto* normal = static_cast<const glm::vec3*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
@@ -82,7 +83,7 @@ Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, 
     }
     std::memcpy(vertices, g.positions.data(), g.positions.size() * sizeof(glm::vec3));
     std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(glm::uvec3));
-    if (g.kind == SceneGeometry::Kind::AreaLight) {
+    if (g.kind == SceneGeometry::Kind::AreaLight && !g.twoSided) {
         // The user pointer stays valid: faceNormals' buffer moves with the EmbreeScene.
         rtcSetGeometryUserData(geom, const_cast<glm::vec3*>(g.faceNormals.data()));
         rtcSetGeometryIntersectFilterFunction(geom, passThroughBackOfAreaLight);
@@ -154,6 +155,7 @@ Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOp
             SceneGeometry g;
             g.kind = SceneGeometry::Kind::AreaLight;
             g.lightIndex = static_cast<uint32_t>(li);
+            g.twoSided = light.twoSided;
             const glm::vec3 c = light.position, hu = 0.5f * light.edgeU, hv = 0.5f * light.edgeV;
             // Counter-clockwise seen from the emitting side, so faceNormals equal areaNormal().
             g.positions = {c - hu - hv, c + hu - hv, c + hu + hv, c - hu + hv};

@@ -4,13 +4,15 @@
 // ray-casting service; not meant for use outside src/reference.
 //
 // Embree geometry ids are indices into geometries(): first one geometry per selected object, then
-// (when asked) one two-triangle geometry per rectangular area light. An area light's rectangle is
-// only there for rays arriving on its emitting side: from behind, rays pass through it.
+// (when asked) one two-triangle geometry per rectangular area light. A one-sided area light's
+// rectangle is only there for rays arriving on its emitting side: from behind, rays pass through it;
+// a two-sided light's rectangle is there from both sides.
 #include "core/Error.h"
 #include "scene/Scene.h"
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -47,6 +49,13 @@ inline void setRay(RTCRay& r, glm::vec3 origin, glm::vec3 direction, float tMin,
     r.mask = 0xffffffffu;
     r.id = 0;
     r.flags = 0;
+}
+
+// An area light's rectangle is the triangles (0, 1, 2) and (0, 2, 3) of its corners at (u, v) = (0, 0),
+// (1, 0), (1, 1), (0, 1) (Scene.h: position + (u - 1/2) edgeU + (v - 1/2) edgeV). This maps Embree's
+// barycentrics (b1, b2) on triangle primId to the light's (u, v), exactly (no division).
+inline glm::vec2 areaLightUv(uint32_t primId, float b1, float b2) noexcept {
+    return primId == 0 ? glm::vec2(b1 + b2, b2) : glm::vec2(b1, b1 + b2);
 }
 
 struct SceneGeometry {

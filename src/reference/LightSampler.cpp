@@ -1,7 +1,7 @@
 #include "reference/LightSampler.h"
 
 #include "core/Image.h"
-
+#include "scene/AreaTexture.h"
 
 namespace bounce {
 
@@ -17,19 +17,38 @@ LightSampler::LightSampler(const Scene& scene, const EmbreeScene& embree) {
     const float sceneRadius = 0.5f * glm::length(hi - lo);
 
     m_entryOfGeometry.assign(embree.geometries().size(), kNoIndex);
+    m_textureOfGeometry.assign(embree.geometries().size(), nullptr);
     for (size_t gi = 0; gi < embree.geometries().size(); ++gi) {
         const SceneGeometry& g = embree.geometries()[gi];
         if (g.kind == SceneGeometry::Kind::AreaLight) {
             const Light light = scene.lights[g.lightIndex].at(time);
-            const float power = kPi * luminance(light.radiance) * light.area();
-            if (!(power > 0.0f)) continue;
+            // The texture shown at this instant (a sequence's frame, the bouncing square's position).
+            Image scratch;
+            const Image* image = areaTextureAt(scene, light, time, scratch);
+            const EmitterTexture* texture = nullptr;
+            if (image) {
+                m_textures.push_back(std::make_unique<EmitterTexture>(*image, light.radiance));
+                texture = m_textures.back().get();
+                m_textureOfGeometry[gi] = texture;
+            }
+            // pi L A per side; a texture replaces lum(L) by the mean of lum(L * texel).
+            const float sides = light.twoSided ? 2.0f : 1.0f;
+            const float emittedLuminance = texture ? texture->meanLuminance() : luminance(light.radiance);
+            const float power = sides * (kPi * emittedLuminance * light.area());
+            if (!(power > 0.0f)) {
+                // A black frame: no power now, never chosen, and emits nothing where rays hit it.
+                if (texture && luminance(light.radiance) > 0.0f) m_darkTexturedLight = true;
+                continue;
+            }
             Entry e{Kind::Area};
+            e.twoSided = light.twoSided;
             e.position = g.positions[0];
             e.edge1 = light.edgeU;
             e.edge2 = light.edgeV;
             e.normal = g.faceNormals[0];
             e.emitted = light.radiance;
             e.area = light.area();
+            e.texture = texture;
             m_entryOfGeometry[gi] = static_cast<uint32_t>(m_entries.size());
             add(e, power);
             continue;
@@ -88,8 +107,10 @@ LightSampler::LightSampler(const Scene& scene, const EmbreeScene& embree) {
     double total = 0.0;
     for (float w : m_weights) total += w;
     if (!(total > 0.0)) {
-        // Nothing can be chosen: empty() then means "no light at all".
+        // Nothing can be chosen: empty() then means "no light at all" (at this instant, when
+        // hasDarkTexturedLight()).
         m_entries.clear();
+        m_entryOfGeometry.assign(m_entryOfGeometry.size(), kNoIndex);
         return;
     }
     const size_t n = m_weights.size();

@@ -3,17 +3,22 @@
 // (point, spot and directional lights, rectangular area lights and each triangle of every object
 // whose material emits), from which one is picked per shading point with probability proportional
 // to its emitted flux (luminance), in constant time through an alias table. Triangles of one emissive object therefore get area-weighted
-// probabilities; a point on a rectangle or triangle is then chosen uniformly by area.
+// probabilities; a point on a triangle or an untextured rectangle is then chosen uniformly by area, a
+// point on a textured rectangle by its texels' emitted luminance (EmitterTexture.h), so the pdf of a
+// textured light carries the chosen texel's factor. Two-sided rectangles and triangles count both
+// sides' flux and are sampled from whichever side faces the shading point.
 //
 // Directional lights have no finite flux: they are weighted by the flux that crosses the disc of
 // the scene's bounding sphere, pi R^2 E (pbrt's convention for distant lights).
 #include "reference/EmbreeScene.h"
+#include "reference/EmitterTexture.h"
 #include "reference/Sampling.h"
 #include "scene/Scene.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace bounce {
@@ -42,6 +47,7 @@ public:
         float cosCutoff = 0.0f;  // spot
         float exponent = 1.0f;   // spot
         float pmf = 0.0f;        // probability of being chosen
+        const EmitterTexture* texture = nullptr;  // area: emission multiplier and its distribution, or null
     };
     struct AliasSlot {
         float threshold = 1.0f;  // keep the slot's own entry below this, else take `alias`
@@ -52,14 +58,25 @@ public:
 
     size_t lightCount() const noexcept { return m_entries.size(); }
     bool empty() const noexcept { return m_entries.empty(); }
+    // True when the scene has a textured area light of non-zero radiance whose texture is black at this
+    // instant (a dark frame of a sequence): such a light has no power now and is never chosen, and the
+    // scene is lit after all at other times, so an empty list is then not a scene without lights.
+    bool hasDarkTexturedLight() const noexcept { return m_darkTexturedLight; }
 
     // Samples a light as seen from point p. Returns false when the chosen light sends nothing
     // towards p (behind a one-sided emitter, outside a spot cone).
     bool sample(glm::vec3 p, float uSelect, float u1, float u2, LightSample& out) const noexcept;
 
-    // Solid-angle pdf with which sample() would have produced a point on triangle primId of
-    // geometry geomId, seen at `distance` under cosine `cosLight` (absolute value) at the light.
-    float pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept;
+    // Solid-angle pdf with which sample() would have produced the point at Embree barycentrics (u, v) of
+    // triangle primId of geometry geomId, seen at `distance` under cosine `cosLight` (absolute value) at
+    // the light.
+    float pdfEmitterHit(uint32_t geomId, uint32_t primId, float u, float v, float distance, float cosLight) const noexcept;
+    // The emission texture of Embree geometry geomId (a textured area light's rectangle), or null.
+    const EmitterTexture* texture(uint32_t geomId) const noexcept { return m_textureOfGeometry[geomId]; }
+    // For the vectorised kernel, which samples rectangles uniformly in (u1, u2): remaps the numbers of a
+    // textured rectangle to the texel-distributed point and returns the entry's emitted radiance and pmf
+    // at it, the same numbers sample() uses.
+    static void textureSample(const Entry& e, float& u1, float& u2, glm::vec3& emitted, float& pmf) noexcept;
 
     // The entry sample() picks for uSelect.
     const Entry& choose(float uSelect) const noexcept;
@@ -76,7 +93,24 @@ private:
     // Per Embree geometry: the first entry of an emissive object's triangles (entry = base + primId),
     // the entry of an area light, or kNoIndex.
     std::vector<uint32_t> m_entryOfGeometry;
+    // Textured area lights at this instant; entries and m_textureOfGeometry point into them (the
+    // pointers survive moves of the sampler).
+    std::vector<std::unique_ptr<EmitterTexture>> m_textures;
+    std::vector<const EmitterTexture*> m_textureOfGeometry;  // per Embree geometry
+    bool m_darkTexturedLight = false;
 };
+
+inline void LightSampler::textureSample(const Entry& e, float& u1, float& u2, glm::vec3& emitted, float& pmf) noexcept {
+    emitted = e.emitted;
+    pmf = e.pmf;
+    if (!e.texture) return;
+    const EmitterTexture::Sample s = e.texture->sample(u1, u2);
+    // The rectangle's corner is (u, v) = (0, 0) and its edges are edgeU, edgeV (EmbreeScene's layout).
+    u1 = s.uv.x;
+    u2 = s.uv.y;
+    emitted = e.emitted * e.texture->texel(s.texel);
+    pmf = e.pmf * e.texture->pdf(s.texel);
+}
 
 inline const LightSampler::Entry& LightSampler::choose(float uSelect) const noexcept {
     const float scaled = uSelect * static_cast<float>(m_entries.size());
@@ -120,7 +154,10 @@ inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2,
         case Kind::Area:
         case Kind::Triangle: {
             glm::vec3 y;
+            glm::vec3 emitted = e.emitted;
+            float pdfChoice = pmf;  // pmf, times the texel's density on a textured rectangle
             if (e.kind == Kind::Area) {
+                textureSample(e, u1, u2, emitted, pdfChoice);
                 y = e.position + u1 * e.edge1 + u2 * e.edge2;
             } else {
                 const glm::vec2 b = uniformTriangle(u1, u2);
@@ -142,8 +179,8 @@ inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2,
             out.distance = d;
             out.lightPoint = offsetRayOrigin(y, front ? e.normal : -e.normal);
             // pdf = pmf d^2 / (A cos); the contribution Le / pdf reuses 1/d instead of dividing again.
-            out.pdf = pmf * d2 / (e.area * cosLight);
-            out.contribution = e.emitted * (e.area * cosLight * invD * invD / pmf);
+            out.pdf = pdfChoice * d2 / (e.area * cosLight);
+            out.contribution = emitted * (e.area * cosLight * invD * invD / pdfChoice);
             return true;
         }
     }
@@ -157,10 +194,12 @@ inline const LightSampler::Entry* LightSampler::emitter(uint32_t geomId, uint32_
     return &m_entries[index];
 }
 
-inline float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float distance, float cosLight) const noexcept {
+inline float LightSampler::pdfEmitterHit(uint32_t geomId, uint32_t primId, float u, float v, float distance,
+                                        float cosLight) const noexcept {
     const Entry* e = emitter(geomId, primId);
     if (!e || !(cosLight > 0.0f) || !(e->area > 0.0f)) return 0.0f;
-    return e->pmf * distance * distance / (e->area * cosLight);
+    const float texel = e->texture ? e->texture->pdf(e->texture->texelAt(areaLightUv(primId, u, v))) : 1.0f;
+    return e->pmf * texel * distance * distance / (e->area * cosLight);
 }
 
 }  // namespace bounce

@@ -3,6 +3,7 @@
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "reference/Bsdf.h"
+#include "scene/AreaTexture.h"
 #include "reference/LambertKernel.h"
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
@@ -123,6 +124,8 @@ Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSett
         BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
     }
 
+    for (const Light& light : scene.lights)
+        BOUNCE_TRY_VOID(checkAreaTexture(scene, light, "light '" + light.name + "'"));
     const float time = scene.timeOfFrame(settings.frame);
     EmbreeSceneOptions options;
     options.time = time;
@@ -135,7 +138,9 @@ Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSett
     arena.execute([&] { embree = EmbreeScene::build(scene, options); });
     if (!embree) return embree.error();
     PathTracer tracer(scene, settings, std::move(embree).value());
-    if (tracer.m_lights.empty())
+    // A textured light that is black at this frame leaves the list empty, yet the scene has a light: the
+    // image is then black (tests/unit/ReferenceAreaTextureTest.cpp), not an error.
+    if (tracer.m_lights.empty() && !tracer.m_lights.hasDarkTexturedLight())
         return makeError("scene '{}': no light source (no light with non-zero power and no object with an emissive "
                          "material)",
                          scene.name);
@@ -143,13 +148,17 @@ Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSett
     return tracer;
 }
 
-std::vector<PathTracer::Shading> PathTracer::gatherShading(const Scene& scene, const EmbreeScene& embree, float time) {
+std::vector<PathTracer::Shading> PathTracer::gatherShading(const Scene& scene, const EmbreeScene& embree,
+                                                          const LightSampler& lights, float time) {
     std::vector<Shading> shading(embree.geometries().size());
     for (size_t i = 0; i < shading.size(); ++i) {
         const SceneGeometry& g = embree.geometries()[i];
         Shading& s = shading[i];
         if (g.kind == SceneGeometry::Kind::AreaLight) {
-            s.emitted = scene.lights[g.lightIndex].at(time).radiance;
+            const Light light = scene.lights[g.lightIndex].at(time);
+            s.emitted = light.radiance;
+            s.emitterTexture = lights.texture(static_cast<uint32_t>(i));
+            s.twoSided = light.twoSided;
             s.absorber = true;
         } else {
             const Material& m = scene.materials[g.materialIndex];
@@ -173,7 +182,7 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
       m_camera(scene.camera.at(m_time), settings.width, settings.height),
       m_maxReflections(settings.bounces == PathTracerSettings::kUnbounded ? kMaxUnboundedReflections
                                                                           : settings.bounces + 1) {
-    m_shading = gatherShading(scene, m_embree, m_time);
+    m_shading = gatherShading(scene, m_embree, m_lights, m_time);
     // What the kernel needs of each geometry, in one place (it reads the triangles themselves from
     // Embree's copy, as surface() does: a per-triangle table was 10 % slower on atrium's 100K
     // triangles, from cache misses).
@@ -192,7 +201,8 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
             k.emitter = m_lights.emitter(static_cast<uint32_t>(gi), 0);
             k.emitterPerTriangle = k.emitter && k.emitter->kind == LightSampler::Kind::Triangle;
         }
-        k.shades = sh.texture == nullptr && (sh.lambertian || sh.absorber);
+        // Textured emitters vary over their rectangle: their hits go through scatter().
+        k.shades = sh.texture == nullptr && sh.emitterTexture == nullptr && (sh.lambertian || sh.absorber);
         k.shadesDiffuseOnly = sh.texture == nullptr && m_settings.diffuseOnly;
         k.emissive = sh.emissive;
         k.twoSided = sh.twoSided;
@@ -220,10 +230,10 @@ PathTracer::Step PathTracer::scatter(PathState& path, const HitRecord& hit, Shad
     if (sh.emissive && (front || sh.twoSided) && (!indirectOnly || path.reflections >= 2)) {
         float weight = 1.0f;
         if (path.reflections > 0) {
-            const float lightPdf = m_lights.pdfEmitterHit(hit.geomId, hit.primId, hit.t, std::abs(cosIn));
+            const float lightPdf = m_lights.pdfEmitterHit(hit.geomId, hit.primId, hit.u, hit.v, hit.t, std::abs(cosIn));
             weight = powerHeuristic(path.bsdfPdf, lightPdf);
         }
-        path.radiance += path.throughput * sh.emitted * weight;
+        path.radiance += path.throughput * emittedAt(sh, hit.primId, hit.u, hit.v) * weight;
     }
     if (sh.absorber || !(front || sh.twoSided)) return Step::Stop;
     if (path.reflections >= m_maxReflections) return Step::Stop;
@@ -246,7 +256,7 @@ PathTracer::Step PathTracer::scatter(PathState& path, const HitRecord& hit, Shad
     // Next-event estimation: one light source, one shadow ray (traced by the caller). Under
     // --indirect-only the first reflection's direct light is not wanted, so no ray is spent on it.
     const float uSelect = rng.next(), uLight1 = rng.next(), uLight2 = rng.next();
-    if (!indirectOnly || vertex >= 2) {
+    if ((!indirectOnly || vertex >= 2) && !m_lights.empty()) {
         LightSample ls;
         if (m_lights.sample(sp.position, uSelect, uLight1, uLight2, ls) && glm::dot(ls.wi, ng) > 0.0f) {
             const float cosS = glm::dot(ls.wi, ns);
@@ -389,16 +399,24 @@ void PathTracer::shadeLanes(lambert::Lanes& L, const int* active) const {
     }
     if (kernelLanes == 0) return;
     lambert::hit(L, m_maxReflections, m_settings.indirectOnly);
+    // Only while every light is dark (LightSampler::hasDarkTexturedLight): no light to sample.
+    static const LightSampler::Entry kNoLight{LightSampler::Kind::Area};
     for (int i = 0; i < kPacketSize; ++i) {
         if (!L.in[i] || L.stop[i]) continue;
-        const LightSampler::Entry& e = m_lights.choose(L.uSelect[i]);
+        if (m_lights.empty()) L.wantLight[i] = 0;
+        const LightSampler::Entry& e = m_lights.empty() ? kNoLight : m_lights.choose(L.uSelect[i]);
+        // A textured rectangle: the kernel samples (u1, u2) uniformly, so hand it the texel-distributed
+        // point's numbers, with that texel's radiance and pmf (what LightSampler::sample uses).
+        glm::vec3 emitted;
+        float pmf;
+        LightSampler::textureSample(e, L.uLight1[i], L.uLight2[i], emitted, pmf);
         L.lightCorner.set(i, e.position);
         L.lightEdge1.set(i, e.edge1);
         L.lightEdge2.set(i, e.edge2);
         L.lightNormal.set(i, e.normal);
-        L.lightEmitted.set(i, e.emitted);
+        L.lightEmitted.set(i, emitted);
         L.lightArea[i] = e.area;
-        L.lightPmf[i] = e.pmf;
+        L.lightPmf[i] = pmf;
         L.lightCosCutoff[i] = e.cosCutoff;
         L.lightExponent[i] = e.exponent;
         L.lightKind[i] = static_cast<int32_t>(e.kind);

@@ -103,15 +103,27 @@ public:
         const Material* material = nullptr;  // null for area lights
         const Image* texture = nullptr;      // base-colour texture, or null
         glm::vec3 emitted{0.0f};             // radiance of the front side (both sides if twoSided)
+        // Textured area lights: the radiance seen at a hit is emitted times this texture's texel there.
+        const EmitterTexture* emitterTexture = nullptr;
         glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
         bool emissive = false;
         bool twoSided = false;
-        bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only)
+        bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only,
+                                  // or from either side when two-sided)
         bool lambertian = false;  // no GGX lobe whatever the texture (specularF0 = 0, metallic = 0)
     };
-    // The shading of every geometry of `embree` (built from `scene`, lights evaluated at `time`):
-    // shared by the path tracer and the photon mapper so that both read the scene the same way.
-    static std::vector<Shading> gatherShading(const Scene& scene, const EmbreeScene& embree, float time);
+    // The shading of every geometry of `embree` (built from `scene`, lights evaluated at `time`, area
+    // lights' textures from `lights`): shared by the path tracer and the photon mapper so that both read
+    // the scene the same way.
+    static std::vector<Shading> gatherShading(const Scene& scene, const EmbreeScene& embree,
+                                              const LightSampler& lights, float time);
+    // The radiance a ray sees on an emitting geometry at Embree barycentrics (u, v) of triangle primId:
+    // the shading's emitted radiance, times the texel there on a textured area light.
+    static glm::vec3 emittedAt(const Shading& shading, uint32_t primId, float u, float v) noexcept {
+        if (!shading.emitterTexture) return shading.emitted;
+        const EmitterTexture& t = *shading.emitterTexture;
+        return shading.emitted * t.texel(t.texelAt(areaLightUv(primId, u, v)));
+    }
 
 private:
     static constexpr int kPacketSize = lambert::kLanes;  // paths traced side by side
@@ -159,7 +171,7 @@ private:
         glm::vec3 albedo{0.0f}, emitted{0.0f};
         const LightSampler::Entry* emitter = nullptr;  // its (first) light entry if it emits
         bool emitterPerTriangle = false;                // entries emitter + primId
-        bool shades = false;             // the kernel shades its hits: untextured Lambert, or an area light
+        bool shades = false;             // the kernel shades its hits: untextured Lambert, or an untextured area light
         bool shadesDiffuseOnly = false;  // ... after the first vertex, under --diffuse-only
         bool emissive = false, twoSided = false, absorber = false;
     };

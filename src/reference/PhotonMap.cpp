@@ -2,6 +2,7 @@
 
 #include "core/ImageIo.h"
 #include "reference/Bsdf.h"
+#include "scene/AreaTexture.h"
 #include "reference/CameraRays.h"
 #include "reference/EmbreeScene.h"
 #include "reference/LightSampler.h"
@@ -51,7 +52,8 @@ constexpr int kMaxCandidateFactor = 16;
 
 using Shading = PathTracer::Shading;
 
-// Flux (W, per channel) of one light-list entry: what it emits in total.
+// Flux (W, per channel) of one light-list entry: what it emits in total (a textured rectangle: as if
+// every texel were 1; tracePhoton weighs each photon by its texel and the texel's pdf).
 glm::vec3 entryFlux(const LightSampler::Entry& e, float sceneRadius) {
     switch (e.kind) {
         case LightSampler::Kind::Point: return 4.0f * kPi * e.emitted;
@@ -61,7 +63,7 @@ glm::vec3 entryFlux(const LightSampler::Entry& e, float sceneRadius) {
             return e.emitted * (2.0f * kPi * (1.0f - std::pow(c0, n1)) / n1);
         }
         case LightSampler::Kind::Directional: return e.emitted * (kPi * sceneRadius * sceneRadius);
-        case LightSampler::Kind::Area: return e.emitted * (kPi * e.area);
+        case LightSampler::Kind::Area: return e.emitted * (kPi * e.area * (e.twoSided ? 2.0f : 1.0f));
         case LightSampler::Kind::Triangle: return e.emitted * (kPi * e.area * (e.twoSided ? 2.0f : 1.0f));
     }
     return glm::vec3(0.0f);
@@ -214,7 +216,7 @@ struct PhotonMapper::Impl {
         sceneRadius = 0.5f * glm::length(hi - lo);  // as LightSampler's weight of directional lights
         maxStoreReflections = st.bounces == PhotonMapSettings::kUnbounded ? kMaxUnboundedReflections - 1 : st.bounces;
         minStoreReflections = st.indirectOnly ? 1 : 0;
-        shading = PathTracer::gatherShading(s, embree, time);
+        shading = PathTracer::gatherShading(s, embree, lights, time);
     }
 
     struct Hit {
@@ -237,11 +239,13 @@ struct PhotonMapper::Impl {
     // Emits photon `index` and follows it, appending what it stores to `out`.
     void tracePhoton(uint64_t index, double powerDivisor, std::vector<Photon>& out, uint64_t& rays) const {
         Rng rng(settings.seed ^ kPhotonStream, index, 0);
+        if (lights.empty()) return;  // every light is dark at this instant (hasDarkTexturedLight)
         const LightSampler::Entry& e = lights.choose(rng.next());
         if (!(e.pmf > 0.0f)) return;
         glm::vec3 power = glm::vec3(glm::dvec3(entryFlux(e, sceneRadius)) / (static_cast<double>(e.pmf) * powerDivisor));
         glm::vec3 origin, direction;
-        const float u1 = rng.next(), u2 = rng.next(), u3 = rng.next(), u4 = rng.next();
+        float u1 = rng.next(), u2 = rng.next();
+        const float u3 = rng.next(), u4 = rng.next();
         switch (e.kind) {
             case LightSampler::Kind::Point:
                 origin = e.position;
@@ -273,6 +277,14 @@ struct PhotonMapper::Impl {
             case LightSampler::Kind::Triangle: {
                 glm::vec3 y;
                 if (e.kind == LightSampler::Kind::Area) {
+                    // A textured rectangle: the point follows the texels' emitted luminance, and the
+                    // photon carries flux (texel radiance) / (its density): power *= texel / pdf.
+                    if (e.texture) {
+                        const EmitterTexture::Sample ts = e.texture->sample(u1, u2);
+                        u1 = ts.uv.x;
+                        u2 = ts.uv.y;
+                        power *= e.texture->texel(ts.texel) / e.texture->pdf(ts.texel);
+                    }
                     y = e.position + u1 * e.edge1 + u2 * e.edge2;
                 } else {
                     const glm::vec2 b = uniformTriangle(u1, u2);
@@ -349,7 +361,7 @@ struct PhotonMapper::Impl {
                 continue;
             }
             glm::vec3 radiance(0.0f);
-            if (sh.emissive && !settings.indirectOnly) radiance += sh.emitted;  // k = 0
+            if (sh.emissive && !settings.indirectOnly) radiance += PathTracer::emittedAt(sh, hit.primId, hit.u, hit.v);  // k = 0
             if (sh.absorber) return radiance;
             const glm::vec3 ng = front ? sp.geometricNormal : -sp.geometricNormal;
             map.gather(sp.position, ng, PhotonGatherParams{settings.k, settings.maxRadius, true}, g, indices, dist2);
@@ -402,6 +414,8 @@ Expected<PhotonMapper> PhotonMapper::create(const Scene& scene, const PhotonMapS
         if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
         BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
     }
+    for (const Light& light : scene.lights)
+        BOUNCE_TRY_VOID(checkAreaTexture(scene, light, "light '" + light.name + "'"));
     EmbreeSceneOptions options;
     options.time = scene.timeOfFrame(settings.frame);
     options.filter = GeometryFilter::All;
@@ -412,7 +426,7 @@ Expected<PhotonMapper> PhotonMapper::create(const Scene& scene, const PhotonMapS
     arena.execute([&] { embree = EmbreeScene::build(scene, options); });
     if (!embree) return embree.error();
     auto impl = std::make_unique<Impl>(scene, settings, std::move(embree).value());
-    if (impl->lights.empty())
+    if (impl->lights.empty() && !impl->lights.hasDarkTexturedLight())
         return makeError("scene '{}': no light source (no light with non-zero power and no object with an emissive "
                          "material)",
                          scene.name);

@@ -24,7 +24,7 @@ constexpr float k2D = 1.0f, kCube = 2.0f;
 
 bool sameLight(const Light& a, const Light& b) {
     return a.position == b.position && a.direction == b.direction && a.edgeU == b.edgeU && a.edgeV == b.edgeV &&
-           a.cutoffAngle == b.cutoffAngle;
+           a.cutoffAngle == b.cutoffAngle && a.twoSided == b.twoSided;
 }
 
 glm::vec3 anyPerpendicular(glm::vec3 d) {
@@ -153,9 +153,12 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
             g.emission = glm::vec4(light.radiance * e.emissionMean, g.emission.w);
         const bool wideSpot = light.type == LightType::Spot && light.cutoffAngle > kMaxPerspectiveSpotAngle;
         const bool cube = light.type == LightType::Point || light.type == LightType::Area || wideSpot;
-        // Cube maps of area lights sit a hair in front of the emitter so it does not shadow itself.
+        // Cube maps of one-sided area lights sit a hair in front of the emitter, so that a surface in
+        // its plane (a ceiling around a recessed light) does not shadow the room. A two-sided light
+        // lights both half-spaces, so its map sits at its centre: the emitter itself is not scene
+        // geometry and never enters the map, so it cannot shadow itself.
         glm::vec3 origin = light.position;
-        if (light.type == LightType::Area) origin += light.areaNormal() * (kNearFraction * diagonal);
+        if (light.type == LightType::Area && !light.twoSided) origin += light.areaNormal() * (kNearFraction * diagonal);
         const float farPlane = glm::length(origin - centre) + radius;
         const float nearPlane = kNearFraction * diagonal;
         g.edgeU.w = cube ? kCube : k2D;

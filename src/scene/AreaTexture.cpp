@@ -2,6 +2,8 @@
 
 #include "core/Check.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -66,6 +68,48 @@ const Image* areaTextureAt(const Scene& scene, const Light& light, float t, Imag
             return &scratch;
     }
     return nullptr;
+}
+
+Expected<void> checkAreaTexture(const Scene& scene, const Light& light, const std::string& where) {
+    const AreaTexture& t = light.texture;
+    if (!t.textured()) return {};
+    if (light.type != LightType::Area) return makeError("{}: only area lights have an emission texture", where);
+    switch (t.kind) {
+        case AreaTexture::Kind::None: break;
+        case AreaTexture::Kind::Images: {
+            if (t.frames.empty()) return makeError("{}: texture has no frames", where);
+            if (!std::isfinite(t.frameRate) || !(t.frameRate > 0.0f))
+                return makeError("{}: texture frame rate {} is not positive", where, t.frameRate);
+            for (size_t f = 0; f < t.frames.size(); ++f) {
+                if (t.frames[f] >= scene.textures.size())
+                    return makeError("{}: texture frame {} is texture index {}, out of range ({} textures)", where, f,
+                                     t.frames[f], scene.textures.size());
+                const Image& image = scene.textures[t.frames[f]].image;
+                if (image.empty()) return makeError("{}: texture frame {} ('{}') is empty", where, f, scene.textures[t.frames[f]].name);
+                const Image& first = scene.textures[t.frames.front()].image;
+                if (image.width() != first.width() || image.height() != first.height())
+                    return makeError("{}: texture frame {} is {}x{}, frame 0 is {}x{}: frames must be the same size",
+                                     where, f, image.width(), image.height(), first.width(), first.height());
+                for (const glm::vec3& texel : image.pixels())
+                    if (!(texel.r >= 0.0f && texel.g >= 0.0f && texel.b >= 0.0f && std::isfinite(texel.r) &&
+                          std::isfinite(texel.g) && std::isfinite(texel.b)))
+                        return makeError("{}: texture frame {} ('{}') has a negative or non-finite texel", where, f,
+                                         scene.textures[t.frames[f]].name);
+            }
+            break;
+        }
+        case AreaTexture::Kind::BouncingSquare:
+            if (t.resolution < 1 || t.resolution > kMaxAreaTextureResolution)
+                return makeError("{}: bouncing-square resolution {} is outside [1, {}]", where, t.resolution,
+                                 kMaxAreaTextureResolution);
+            if (!std::isfinite(t.squareSize) || !(t.squareSize > 0.0f) || t.squareSize > 1.0f)
+                return makeError("{}: bouncing-square size {} is outside (0, 1]", where, t.squareSize);
+            if (!std::isfinite(t.squareVelocity.x) || !std::isfinite(t.squareVelocity.y) ||
+                !std::isfinite(t.squareStart.x) || !std::isfinite(t.squareStart.y))
+                return makeError("{}: bouncing-square velocity or start is not finite", where);
+            break;
+    }
+    return {};
 }
 
 glm::vec3 imageMean(const Image& image) {

@@ -2,6 +2,7 @@
 
 #include "core/ImageIo.h"
 #include "core/Log.h"
+#include "scene/AreaTexture.h"
 #include "scene/JsonLocator.h"
 #include "scene/ModelLoader.h"
 
@@ -25,6 +26,9 @@ using nlohmann::json;
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+// Upper bound of an area light's texture frame rate (frames per second): far above any video rate,
+// it only catches typos such as a period given in milliseconds.
+constexpr float kMaxTextureFrameRate = 1e4f;
 
 std::string joinKeys(const std::set<std::string>& keys) {
     std::string out;
@@ -111,6 +115,15 @@ private:
         glm::vec3 v(0.0f);
         for (int i = 0; i < 3; ++i) {
             BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i)));
+        }
+        return v;
+    }
+
+    Expected<glm::vec2> vec2(const json& j, const std::string& p, float lo, float hi) const {
+        if (!j.is_array() || j.size() != 2) return err(p, "expected an array of 2 numbers");
+        glm::vec2 v(0.0f);
+        for (int i = 0; i < 2; ++i) {
+            BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i), lo, hi));
         }
         return v;
     }
@@ -357,10 +370,14 @@ private:
             keys.insert({"direction", "irradiance"});
         } else if (type == "area") {
             l.type = LightType::Area;
-            keys.insert({"position", "edgeU", "edgeV", "radiance"});
+            keys.insert({"position", "edgeU", "edgeV", "radiance", "texture", "twoSided"});
         } else {
             return err(p + "/type", "{}: unknown type \"{}\" (known: point, spot, directional, area)", what, type);
         }
+        for (const char* areaOnly : {"texture", "twoSided"})
+            if (l.type != LightType::Area && j.contains(areaOnly))
+                return err(p + "/" + areaOnly, "{}: \"{}\" applies to area lights only, not to a {} light", what,
+                           areaOnly, type);
         BOUNCE_TRY_VOID(checkKeys(j, p, what + " (" + type + ")", keys));
         const auto need = [&](const char* key) -> Expected<void> {
             if (!j.contains(key)) return err(p, "{}: a {} light needs \"{}\"", what, type, key);
@@ -409,12 +426,99 @@ private:
             BOUNCE_TRY(l.edgeV, vec3(j["edgeV"], p + "/edgeV"));
             BOUNCE_TRY(l.radiance, rgb(j["radiance"], p + "/radiance", 0.0f, kInf));
             if (!(l.area() > 0.0f)) return err(p, "{}: area light edges span zero area", what);
+            if (j.contains("twoSided")) {
+                BOUNCE_TRY(l.twoSided, boolean(j["twoSided"], p + "/twoSided"));
+            }
+            if (j.contains("texture")) {
+                BOUNCE_TRY(l.texture, areaTexture(j["texture"], p + "/texture", what));
+            }
         }
         if (j.contains("animation")) {
             BOUNCE_TRY(l.animation, animation(j["animation"], p + "/animation"));
         }
         m_scene.lights.push_back(std::move(l));
         return {};
+    }
+
+    // One emission image of an area light: a file relative to the scene, PNG/JPEG decoded from sRGB to
+    // linear, EXR as stored; its texels are multipliers of the radiance, so they must be finite and
+    // non-negative. Returns its index in Scene::textures.
+    Expected<uint32_t> areaTextureImage(const json& j, const std::string& p, const std::string& what) {
+        BOUNCE_TRY(const std::string rel, text(j, p));
+        const fs::path file = m_path.parent_path() / rel;
+        if (!fs::exists(file)) return err(p, "{}: texture {}: file not found", what, file.string());
+        Expected<Image> image = readImage(file);
+        if (!image.ok()) return err(p, "{}: texture unusable: {}", what, image.error().message);
+        if (image->empty()) return err(p, "{}: texture {} is empty", what, file.string());
+        if (Expected<void> finite = checkFinite(*image, file.string()); !finite.ok())
+            return err(p, "{}: texture {}", what, finite.error().message);
+        for (const glm::vec3& texel : image->pixels())
+            if (texel.r < 0.0f || texel.g < 0.0f || texel.b < 0.0f)
+                return err(p, "{}: texture {} has a negative texel (texels multiply the radiance)", what, file.string());
+        const auto index = static_cast<uint32_t>(m_scene.textures.size());
+        m_scene.textures.push_back({file.string(), std::move(image.value())});
+        return index;
+    }
+
+    // An area light's "texture": an image path, {"frames": [paths], "frameRate": fps}, or
+    // {"pattern": "bouncing-square", ...} (docs/scene.md "Lights").
+    Expected<AreaTexture> areaTexture(const json& j, const std::string& p, const std::string& what) {
+        AreaTexture t;
+        if (j.is_string()) {
+            t.kind = AreaTexture::Kind::Images;
+            BOUNCE_TRY(const uint32_t index, areaTextureImage(j, p, what));
+            t.frames = {index};
+            return t;
+        }
+        if (!j.is_object())
+            return err(p, "{}: \"texture\" must be an image path, {{\"frames\": [...]}} or {{\"pattern\": ...}}", what);
+        if (j.contains("frames") == j.contains("pattern"))
+            return err(p, "{}: a texture object needs exactly one of \"frames\" (an image sequence) and \"pattern\"", what);
+        if (j.contains("frames")) {
+            BOUNCE_TRY_VOID(checkKeys(j, p, what + " texture", {"frames", "frameRate"}));
+            t.kind = AreaTexture::Kind::Images;
+            const json& frames = j["frames"];
+            if (!frames.is_array() || frames.empty())
+                return err(p + "/frames", "{}: \"frames\" must be a non-empty array of image paths", what);
+            for (size_t i = 0; i < frames.size(); ++i) {
+                const std::string fp = p + "/frames/" + std::to_string(i);
+                BOUNCE_TRY(const uint32_t index, areaTextureImage(frames[i], fp, what));
+                const Image& first = m_scene.textures[t.frames.empty() ? index : t.frames.front()].image;
+                const Image& image = m_scene.textures[index].image;
+                if (image.width() != first.width() || image.height() != first.height())
+                    return err(fp, "{}: frame {} is {}x{}, frame 0 is {}x{}: all frames must be the same size", what, i,
+                               image.width(), image.height(), first.width(), first.height());
+                t.frames.push_back(index);
+            }
+            if (j.contains("frameRate")) {
+                BOUNCE_TRY(t.frameRate, number(j["frameRate"], p + "/frameRate", 0.0f, kMaxTextureFrameRate));
+                if (!(t.frameRate > 0.0f)) return err(p + "/frameRate", "{}: texture frame rate must be positive", what);
+            }
+            return t;
+        }
+        BOUNCE_TRY_VOID(checkKeys(j, p, what + " texture pattern", {"pattern", "resolution", "size", "velocity", "start"}));
+        BOUNCE_TRY(const std::string pattern, text(j["pattern"], p + "/pattern"));
+        if (pattern != "bouncing-square")
+            return err(p + "/pattern", "{}: unknown texture pattern \"{}\" (known: bouncing-square)", what, pattern);
+        t.kind = AreaTexture::Kind::BouncingSquare;
+        if (j.contains("resolution")) {
+            const json& r = j["resolution"];
+            if (!r.is_number_integer() || r.get<int64_t>() < 1 || r.get<int64_t>() > kMaxAreaTextureResolution)
+                return err(p + "/resolution", "{}: resolution must be an integer in [1, {}] (texels per side)", what,
+                           kMaxAreaTextureResolution);
+            t.resolution = static_cast<int>(r.get<int64_t>());
+        }
+        if (j.contains("size")) {
+            BOUNCE_TRY(t.squareSize, number(j["size"], p + "/size", 0.0f, 1.0f));
+            if (!(t.squareSize > 0.0f)) return err(p + "/size", "{}: square size must be in (0, 1]", what);
+        }
+        if (j.contains("velocity")) {
+            BOUNCE_TRY(t.squareVelocity, vec2(j["velocity"], p + "/velocity", -kInf, kInf));
+        }
+        if (j.contains("start")) {
+            BOUNCE_TRY(t.squareStart, vec2(j["start"], p + "/start", 0.0f, 1.0f));
+        }
+        return t;
     }
 
     Expected<void> camera(const json& j, const std::string& p) {

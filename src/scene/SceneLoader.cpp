@@ -57,6 +57,12 @@ const std::vector<BuiltinEntry>& registry() {
           "2013's radiosity scene",
           {}},
          buildIndirectLight},
+        {{"area-screen",
+          "A 1.6 m x 0.9 m textured, animated screen (the only light, one-sided) facing a stage of diffuse and "
+          "glossy boxes and spheres; Nichols 2010 ch. 5's set-up",
+          {{"pattern", "bars: the screen's video, bars (a colour-bar test card of 4 frames at 2 fps) or square (a "
+                       "white square bouncing on black); both emit the same mean flux"}}},
+         buildAreaScreen},
     };
     return entries;
 }

@@ -2,6 +2,7 @@
 // renderers can assume finite values, valid indices, unit normals and non-degenerate triangles.
 #include "core/ImageIo.h"
 #include "core/Log.h"
+#include "scene/AreaTexture.h"
 #include "scene/SceneLoader.h"
 
 #include <glm/geometric.hpp>
@@ -124,7 +125,7 @@ Expected<void> finalizeMesh(Mesh& mesh, const std::string& where) {
     return {};
 }
 
-Expected<void> checkLight(Light& light, const std::string& where) {
+Expected<void> checkLight(const Scene& scene, Light& light, const std::string& where) {
     if (!finite(light.position) || !finite(light.direction) || !finite(light.intensity) ||
         !finite(light.irradiance) || !finite(light.radiance) || !finite(light.cutoffAngle) ||
         !finite(light.falloffExponent) || !finite(light.edgeU) || !finite(light.edgeV))
@@ -148,6 +149,8 @@ Expected<void> checkLight(Light& light, const std::string& where) {
             break;
         case LightType::Point: break;
     }
+    if (light.twoSided && light.type != LightType::Area) return makeError("{}: only area lights can be two-sided", where);
+    BOUNCE_TRY_VOID(checkAreaTexture(scene, light, where));
     return checkTrack(light.animation, where);
 }
 
@@ -229,7 +232,7 @@ Expected<void> finalizeScene(Scene& scene) {
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         Light& light = scene.lights[i];
         if (light.name.empty()) light.name = fmt::format("light-{}", i);
-        BOUNCE_TRY_VOID(checkLight(light, fmt::format("{}: light '{}'", s, light.name)));
+        BOUNCE_TRY_VOID(checkLight(scene, light, fmt::format("{}: light '{}'", s, light.name)));
     }
     BOUNCE_TRY_VOID(checkCamera(scene.camera, s));
     for (const auto& [key, value] : scene.settings)

@@ -72,6 +72,13 @@ file(WRITE ${WORK}/garbage.obj "v 0 0 0\nv nan 1 0\nv 1 0 0\nf 1 2 3\n")
 expect_failure("NaN in a model" "garbage.obj" ${png} render --scene ${WORK}/garbage.obj --size 8x8 --out ${png})
 file(WRITE ${WORK}/degenerate.obj "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")
 expect_failure("degenerate geometry" "degenerate" ${png} render --scene ${WORK}/degenerate.obj --size 8x8 --out ${png})
+file(WRITE ${WORK}/tri.obj "v 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3\n")
+file(WRITE ${WORK}/screen.json "{\"objects\": [{\"model\": \"tri.obj\"}],\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]},\n\"lights\": [{\"type\": \"area\", \"position\": [0, 1, 0], \"edgeU\": [1, 0, 0], \"edgeV\": [0, 0, 1], \"radiance\": 1,\n  \"texture\": \"absent.png\"}]}\n")
+expect_failure("area light texture missing" "screen.json:4: light 'light-0': texture" ${png}
+               render --scene ${WORK}/screen.json --size 8x8 --out ${png})
+file(WRITE ${WORK}/square.json "{\"objects\": [{\"model\": \"tri.obj\"}],\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]},\n\"lights\": [{\"type\": \"area\", \"position\": [0, 1, 0], \"edgeU\": [1, 0, 0], \"edgeV\": [0, 0, 1], \"radiance\": 1,\n  \"texture\": {\"pattern\": \"bouncing-square\", \"size\": 0}}]}\n")
+expect_failure("bouncing square of size 0" "square.json:4: light 'light-0': square size" ${png}
+               reference --scene ${WORK}/square.json --size 8x8 --spp 1 --out ${png})
 expect_failure("unknown scene parameter" "triangles" ${png}
                render --scene cornell-box --scene-param triangles=5 --size 8x8 --out ${png})
 expect_failure("compare missing file" "not found" "" compare ${WORK}/a.exr ${WORK}/b.exr)

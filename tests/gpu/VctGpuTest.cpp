@@ -67,7 +67,7 @@ double relMse(const Image& test, const Image& reference) {
 }  // namespace
 
 TEST_F(VctGpuTest, EveryVoxelizerMatchesTheCpuOverlapTest) {
-    for (const char* name : {"cornell-box", "cornell-box-area", "cornell-box-dynamic", "furnace", "two-rooms", "atrium"}) {
+    for (const char* name : {"cornell-box", "cornell-box-area", "cornell-box-dynamic", "furnace", "two-rooms", "atrium", "area-screen"}) {
         auto scene = loadScene(name);
         ASSERT_TRUE(scene.ok());
         // A grid box offset by a fraction of a voxel from the scene's round coordinates: walls lying

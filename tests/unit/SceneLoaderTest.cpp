@@ -711,6 +711,130 @@ TEST(JsonScene, MissingFilesAndReferences) {
     EXPECT_TRUE(contains(log.text(), "wood.png")) << log.text();
 }
 
+TEST(JsonScene, AreaLightTexturesAndTwoSided) {
+    writeFile("arealight/models/cube.obj", kCubeObj);
+    // A PNG is decoded from sRGB: full red and green stay 1 and 0 exactly, 8-bit 128 is 0.2158 (sRGB EOTF).
+    Image still(2, 1);
+    still.at(0, 0) = glm::vec3(1.0f, 0.0f, 0.0f);
+    still.at(1, 0) = glm::vec3(0.0f, 1.0f, 0.0f);
+    ASSERT_TRUE(writeImage(tempDir() / "arealight/still.png", still, ToneMap{0.0f, ToneCurve::Clamp}).ok());
+    ASSERT_TRUE(writeImage(tempDir() / "arealight/f0.exr", Image(4, 2, glm::vec3(0.25f))).ok());
+    ASSERT_TRUE(writeImage(tempDir() / "arealight/f1.exr", Image(4, 2, glm::vec3(3.0f))).ok());
+    const fs::path p = writeFile("arealight/scene.json", R"({
+  "objects": [{"model": "models/cube.obj"}],
+  "camera": {"position": [0, 0, 5], "target": [0, 0, 0]},
+  "lights": [
+    {"name": "still", "type": "area", "position": [0, 2, 0], "edgeU": [1, 0, 0], "edgeV": [0, 0, 1],
+     "radiance": 2, "twoSided": true, "texture": "still.png"},
+    {"name": "video", "type": "area", "position": [0, 2, 0], "edgeU": [1, 0, 0], "edgeV": [0, 0, 1],
+     "radiance": 2, "texture": {"frames": ["f0.exr", "f1.exr"], "frameRate": 12}},
+    {"name": "square", "type": "area", "position": [0, 2, 0], "edgeU": [1, 0, 0], "edgeV": [0, 0, 1],
+     "radiance": 2, "texture": {"pattern": "bouncing-square", "resolution": 32, "size": 0.5,
+                                "velocity": [0.1, -0.2], "start": [0.5, 0.25]}},
+    {"name": "plain", "type": "area", "position": [0, 2, 0], "edgeU": [1, 0, 0], "edgeV": [0, 0, 1], "radiance": 2}
+  ]
+})");
+    Expected<Scene> scene = loadScene(p.string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->lights.size(), 4u);
+    const Light& still0 = scene->lights[0];
+    EXPECT_TRUE(still0.twoSided);
+    ASSERT_EQ(still0.texture.kind, AreaTexture::Kind::Images);
+    ASSERT_EQ(still0.texture.frames.size(), 1u);
+    const Image& png = scene->textures[still0.texture.frames[0]].image;
+    ASSERT_EQ(png.width(), 2);
+    EXPECT_EQ(png.at(0, 0), glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(png.at(1, 0), glm::vec3(0.0f, 1.0f, 0.0f));
+
+    const Light& video = scene->lights[1];
+    EXPECT_FALSE(video.twoSided);
+    ASSERT_EQ(video.texture.frames.size(), 2u);
+    EXPECT_FLOAT_EQ(video.texture.frameRate, 12.0f);
+    EXPECT_EQ(scene->textures[video.texture.frames[0]].image.at(3, 1), glm::vec3(0.25f));  // EXR is linear as stored
+    EXPECT_EQ(scene->textures[video.texture.frames[1]].image.at(0, 0), glm::vec3(3.0f));
+
+    const AreaTexture& sq = scene->lights[2].texture;
+    EXPECT_EQ(sq.kind, AreaTexture::Kind::BouncingSquare);
+    EXPECT_EQ(sq.resolution, 32);
+    EXPECT_FLOAT_EQ(sq.squareSize, 0.5f);
+    EXPECT_EQ(sq.squareVelocity, glm::vec2(0.1f, -0.2f));
+    EXPECT_EQ(sq.squareStart, glm::vec2(0.5f, 0.25f));
+
+    EXPECT_FALSE(scene->lights[3].texture.textured());
+    EXPECT_FALSE(scene->lights[3].twoSided);
+}
+
+TEST(JsonScene, AreaLightTextureBadInput) {
+    writeFile("areabad/models/cube.obj", kCubeObj);
+    ASSERT_TRUE(writeImage(tempDir() / "areabad/small.exr", Image(2, 2, glm::vec3(1.0f))).ok());
+    ASSERT_TRUE(writeImage(tempDir() / "areabad/large.exr", Image(4, 2, glm::vec3(1.0f))).ok());
+    Image negative(2, 2, glm::vec3(1.0f));
+    negative.at(1, 1) = glm::vec3(-1.0f);
+    ASSERT_TRUE(writeImage(tempDir() / "areabad/negative.exr", negative).ok());
+    writeFile("areabad/garbage.png", "this is not a PNG file");
+    int n = 0;
+    // The light's extra keys are on line 5 of the file: every error names the file, that line and `expect`.
+    const auto check = [&](const std::string& type, const std::string& extra, const std::string& expect) {
+        SCOPED_TRACE(extra);
+        const std::string name = "case" + std::to_string(n++) + ".json";
+        const fs::path p = writeFile("areabad/" + name,
+                                     "{\n  \"objects\": [{\"model\": \"models/cube.obj\"}],\n"
+                                     "  \"camera\": {\"position\": [0, 0, 5], \"target\": [0, 0, 0]},\n"
+                                     "  \"lights\": [{\"name\": \"screen\", \"type\": \"" + type + "\",\n" +
+                                         "    " + extra + ",\n"
+                                         "    \"position\": [0, 2, 0], \"edgeU\": [1, 0, 0], \"edgeV\": [0, 0, 1], "
+                                         "\"radiance\": 1, \"intensity\": 1}]\n}\n");
+        Expected<Scene> scene = loadScene(p.string());
+        ASSERT_FALSE(scene.ok());
+        const std::string& msg = scene.error().message;
+        EXPECT_TRUE(contains(msg, name + ":5:")) << msg;
+        EXPECT_TRUE(contains(msg, expect)) << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    };
+    // `check` gives a non-area light area keys too: "texture" and "twoSided" must be reported before the
+    // unknown-key check would name the others. `area` cases are well-formed area lights but for `extra`.
+    const auto area = [&](const std::string& extra, const std::string& expect) {
+        SCOPED_TRACE(extra);
+        const std::string name = "case" + std::to_string(n++) + ".json";
+        const fs::path p = writeFile("areabad/" + name,
+                                     "{\n  \"objects\": [{\"model\": \"models/cube.obj\"}],\n"
+                                     "  \"camera\": {\"position\": [0, 0, 5], \"target\": [0, 0, 0]},\n"
+                                     "  \"lights\": [{\"name\": \"screen\", \"type\": \"area\",\n" +
+                                         ("    " + extra + ",\n") +
+                                         "    \"position\": [0, 2, 0], \"edgeU\": [1, 0, 0], \"edgeV\": [0, 0, 1], "
+                                         "\"radiance\": 1}]\n}\n");
+        Expected<Scene> scene = loadScene(p.string());
+        ASSERT_FALSE(scene.ok());
+        const std::string& msg = scene.error().message;
+        EXPECT_TRUE(contains(msg, name + ":5:")) << msg;
+        EXPECT_TRUE(contains(msg, expect)) << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    };
+    area(R"("texture": "absent.png")", "absent.png: file not found");
+    area(R"("texture": "garbage.png")", "garbage.png");
+    area(R"("texture": "negative.exr")", "negative texel");
+    area(R"("texture": 3)", "must be an image path");
+    area(R"("texture": {"frames": ["small.exr", "large.exr"]})", "frame 1 is 4x2, frame 0 is 2x2");
+    area(R"("texture": {"frames": []})", "non-empty array");
+    area(R"("texture": {"frames": ["small.exr", "absent.exr"]})", "absent.exr: file not found");
+    area(R"("texture": {"frames": ["small.exr"], "frameRate": 0})", "frame rate must be positive");
+    area(R"("texture": {"frames": ["small.exr"], "frameRate": -24})", "outside");
+    area(R"("texture": {"frames": ["small.exr"], "fps": 24})", "unknown key \"fps\"");
+    area(R"("texture": {"frames": ["small.exr"], "pattern": "bouncing-square"})", "exactly one of");
+    area(R"("texture": {"pattern": "checkerboard"})", "unknown texture pattern \"checkerboard\"");
+    area(R"("texture": {"pattern": "bouncing-square", "resolution": 0})", "resolution must be an integer");
+    area(R"("texture": {"pattern": "bouncing-square", "resolution": 2.5})", "resolution must be an integer");
+    area(R"("texture": {"pattern": "bouncing-square", "resolution": 100000})", "resolution must be an integer");
+    area(R"("texture": {"pattern": "bouncing-square", "size": 0})", "size must be in (0, 1]");
+    area(R"("texture": {"pattern": "bouncing-square", "size": 1.5})", "outside [0, 1]");
+    area(R"("texture": {"pattern": "bouncing-square", "velocity": [1]})", "array of 2 numbers");
+    area(R"("texture": {"pattern": "bouncing-square", "start": [0.5, 2]})", "outside [0, 1]");
+    area(R"("texture": {"pattern": "bouncing-square", "speed": 1})", "unknown key \"speed\"");
+    area(R"("twoSided": "yes")", "expected true or false");
+    check("point", R"("texture": "small.exr")", "applies to area lights only");
+    check("spot", R"("twoSided": true)", "applies to area lights only");
+}
+
 TEST(JsonLocator, FindsLinesOfKeysAndElements) {
     const std::string text = "{\n  \"a\": 1,\n  \"b\": [\n    {\"c\": \"x\"},\n    {\"d\": 2}\n  ],\n  \"e/f\": {}\n}\n";
     const JsonLocator locator(text);

@@ -585,3 +585,88 @@ TEST(IndirectLight, WhiteRoomLitByAWindowTheCameraDoesNotSee) {
     ASSERT_FALSE(withParam.ok());
     EXPECT_NE(withParam.error().message.find("indirect-light"), std::string::npos) << withParam.error().message;
 }
+
+// area-screen (docs/scene.md "area-screen"): one one-sided textured screen of 1.6 m x 0.9 m facing the
+// stage, the only light; diffuse and glossy (GGX roughness 0.2-0.3, F0 0.04) objects standing on the
+// floor in front of it, under 5,000 triangles; the camera sees the whole screen and every object.
+TEST(AreaScreen, TexturedScreenFacingDiffuseAndGlossyObjects) {
+    Expected<Scene> scene = loadScene("area-screen");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_LT(scene->triangleCount(), 5000u);
+    ASSERT_EQ(scene->lights.size(), 1u);
+    const Light& screen = scene->lights[0];
+    EXPECT_EQ(screen.type, LightType::Area);
+    EXPECT_FALSE(screen.twoSided);
+    EXPECT_NEAR(glm::length(screen.edgeU), 1.6f, 1e-6f);
+    EXPECT_NEAR(glm::length(screen.edgeV), 0.9f, 1e-6f);
+    EXPECT_NEAR(screen.areaNormal().z, 1.0f, 1e-6f) << "faces the stage";
+    EXPECT_FALSE(scene->hasEmissiveMaterials());
+
+    // Bars: four frames of one size, each different, shown at 2 frames per second.
+    ASSERT_EQ(screen.texture.kind, AreaTexture::Kind::Images);
+    ASSERT_EQ(screen.texture.frames.size(), 4u);
+    EXPECT_FLOAT_EQ(screen.texture.frameRate, 2.0f);
+    const Image& first = scene->textures[screen.texture.frames[0]].image;
+    for (size_t f = 1; f < 4; ++f) {
+        const Image& frame = scene->textures[screen.texture.frames[f]].image;
+        ASSERT_EQ(frame.width(), first.width());
+        ASSERT_EQ(frame.height(), first.height());
+        EXPECT_NE(frame.pixels(), first.pixels()) << "frame " << f << " repeats frame 0";
+    }
+    EXPECT_EQ(first.width() * 9, first.height() * 16) << "16:9, square texels on the screen";
+
+    int glossy = 0, diffuse = 0;
+    for (const Object& o : scene->objects) {
+        const Material& m = scene->materials[o.material];
+        if (m.specularF0 > 0.0f) {
+            EXPECT_FLOAT_EQ(m.specularF0, 0.04f) << o.name;
+            EXPECT_GE(m.roughness, 0.2f) << o.name;
+            EXPECT_LE(m.roughness, 0.3f) << o.name;
+            ++glossy;
+        } else if (o.name != "floor" && o.name.find("wall") == std::string::npos) {
+            ++diffuse;
+        }
+    }
+    EXPECT_GE(glossy, 2);
+    EXPECT_GE(diffuse, 2);
+
+    // In view at 1:1 and 16:9: the screen's corners and every object's vertices; objects stand on the
+    // floor (y >= 0) between the screen and the camera.
+    const Camera& cam = scene->camera;
+    for (float aspect : {1.0f, 16.0f / 9.0f}) {
+        const glm::mat4 clipFromWorld = cam.clipFromView(aspect) * cam.viewFromWorld();
+        const auto inView = [&](glm::vec3 p) {
+            const glm::vec4 c = clipFromWorld * glm::vec4(p, 1.0f);
+            return c.w > 0.0f && std::abs(c.x / c.w) < 1.0f && std::abs(c.y / c.w) < 1.0f;
+        };
+        for (float u : {-0.5f, 0.5f})
+            for (float v : {-0.5f, 0.5f})
+                EXPECT_TRUE(inView(screen.position + u * screen.edgeU + v * screen.edgeV)) << "aspect " << aspect;
+        for (const Object& o : scene->objects) {
+            if (o.name == "floor" || o.name.find("wall") != std::string::npos) continue;
+            glm::vec3 lo, hi;
+            objectBounds(*scene, o, 0.0f, lo, hi);
+            EXPECT_GE(lo.y, -1e-5f) << o.name;
+            EXPECT_GT(lo.z, screen.position.z) << o.name;
+            const glm::mat4 m = o.worldFromObject(0.0f);
+            for (const glm::vec3& p : scene->meshes[o.mesh].positions)
+                ASSERT_TRUE(inView(glm::vec3(m * glm::vec4(p, 1.0f)))) << o.name << " aspect " << aspect;
+        }
+    }
+
+    // pattern=square: the bouncing square, emitting the bars' mean flux (radiance x mean multiplier).
+    Expected<Scene> square = loadScene("area-screen", {{"pattern", "square"}});
+    ASSERT_TRUE(square.ok()) << square.error().message;
+    const Light& sq = square->lights[0];
+    EXPECT_EQ(sq.texture.kind, AreaTexture::Kind::BouncingSquare);
+    EXPECT_TRUE(square->textures.empty());
+    double barsMean = 0.0;
+    for (const glm::vec3& p : first.pixels()) barsMean += luminance(p);
+    barsMean /= static_cast<double>(first.pixelCount());
+    EXPECT_NEAR(luminance(sq.radiance) * sq.texture.squareSize * sq.texture.squareSize / (luminance(screen.radiance) * barsMean),
+                1.0, 1e-5);
+
+    Expected<Scene> bad = loadScene("area-screen", {{"pattern", "plasma"}});
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().message.find("pattern"), std::string::npos) << bad.error().message;
+}

@@ -160,6 +160,85 @@ TEST(FinalizeScene, RejectsBadLights) {
         {"bulb", "finite"});
 }
 
+TEST(FinalizeScene, RejectsBadAreaLightTextures) {
+    // An area light with a two-frame sequence of 2x1 images; each case breaks one rule.
+    const auto textured = [](Scene& s) {
+        Light& l = s.lights[0];
+        l.type = LightType::Area;
+        l.radiance = glm::vec3(1.0f);
+        l.texture.kind = AreaTexture::Kind::Images;
+        s.textures.push_back({"a.png", Image(2, 1, glm::vec3(1.0f))});
+        s.textures.push_back({"b.png", Image(2, 1, glm::vec3(0.5f))});
+        l.texture.frames = {0, 1};
+    };
+    {
+        Scene s = validScene();
+        textured(s);
+        ASSERT_TRUE(finalizeScene(s).ok());
+    }
+    expectRejected(
+        [&](Scene& s) {
+            textured(s);
+            s.lights[0].texture.frames = {0, 7};
+        },
+        {"bulb", "frame 1", "out of range"});
+    expectRejected(
+        [&](Scene& s) {
+            textured(s);
+            s.lights[0].texture.frames.clear();
+        },
+        {"bulb", "no frames"});
+    expectRejected(
+        [&](Scene& s) {
+            textured(s);
+            s.textures[1].image = Image(3, 1, glm::vec3(1.0f));
+        },
+        {"bulb", "frame 1 is 3x1", "same size"});
+    expectRejected(
+        [&](Scene& s) {
+            textured(s);
+            s.lights[0].texture.frameRate = 0.0f;
+        },
+        {"bulb", "frame rate"});
+    expectRejected(
+        [&](Scene& s) {
+            textured(s);
+            s.textures[0].image.at(1, 0).g = -0.5f;
+        },
+        {"bulb", "negative or non-finite texel"});
+    expectRejected(
+        [&](Scene& s) {
+            textured(s);
+            s.lights[0].type = LightType::Point;
+        },
+        {"bulb", "only area lights"});
+    expectRejected([](Scene& s) { s.lights[0].twoSided = true; }, {"bulb", "two-sided"});
+    const auto square = [](Scene& s) {
+        Light& l = s.lights[0];
+        l.type = LightType::Area;
+        l.radiance = glm::vec3(1.0f);
+        l.texture.kind = AreaTexture::Kind::BouncingSquare;
+    };
+    expectRejected(
+        [&](Scene& s) {
+            square(s);
+            s.lights[0].texture.resolution = 0;
+        },
+        {"bulb", "resolution 0"});
+    expectRejected(
+        [&](Scene& s) {
+            square(s);
+            s.lights[0].texture.squareSize = 1.5f;
+        },
+        {"bulb", "size 1.5"});
+    expectRejected(
+        [&](Scene& s) {
+            square(s);
+            s.lights[0].texture.squareVelocity.x = kNaN;
+        },
+        {"bulb", "not finite"});
+}
+
 TEST(FinalizeScene, RejectsBadCameras) {
     expectRejected([](Scene& s) { s.camera.target = s.camera.position; }, {"camera", "position equals target"});
     expectRejected([](Scene& s) { s.camera.verticalFov = 0.0f; }, {"camera", "field of view"});
