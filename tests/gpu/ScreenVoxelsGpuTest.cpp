@@ -13,6 +13,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <bit>
+#include <cstdio>
 #include <cmath>
 #include <vector>
 
@@ -145,9 +146,12 @@ struct Segment {
     glm::vec3 a, b;
 };
 
-// voxelMarch (march.glsl) on each segment, through shaders/techniques/screen_voxels/march_probe.comp.
-std::vector<float> march(const Grid& grid, const std::vector<Segment>& segments, int steps = kSteps,
-                         int thickness = kThickness) {
+enum class March { Uniform, Columns };  // voxelMarch (the thesis's samples), voxelTrace (every column)
+
+// voxelMarch or voxelTrace (march.glsl) on each segment, through
+// shaders/techniques/screen_voxels/march_probe.comp.
+std::vector<float> march(const Grid& grid, const std::vector<Segment>& segments, March how, int thickness = kThickness,
+                         int steps = kSteps) {
     auto program = gl::Program::build({"test.marchProbe", {{GL_COMPUTE_SHADER, "techniques/screen_voxels/march_probe.comp"}}});
     EXPECT_TRUE(program.ok()) << program.error().message;
     std::vector<glm::vec4> packed;
@@ -161,6 +165,7 @@ std::vector<float> march(const Grid& grid, const std::vector<Segment>& segments,
     out.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
     grid.voxels.bind();
     program->set("u_count", static_cast<int>(segments.size()));
+    program->set("u_trace", how == March::Columns ? 1 : 0);
     program->use();
     gl::Program::dispatch(static_cast<int>(segments.size()), 1, 1, 64);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -170,20 +175,25 @@ std::vector<float> march(const Grid& grid, const std::vector<Segment>& segments,
 }
 }  // namespace
 
-TEST_F(ScreenVoxelsGpuTest, EveryCoveredColumnGetsOneBitPerSurface) {
+TEST_F(ScreenVoxelsGpuTest, EveryCoveredColumnGetsTheBitsOfItsSurfaces) {
     const Scene scene = floorAndMarker();
     Grid grid(scene);
-    // Each covered column holds one bit per surface over it (the floor and the marker lie in one
-    // depth slice per column): the bit count is the floor's covered columns plus the marker's.
+    // Each covered column holds the bits of the depths each surface spans over it. Both squares face the
+    // camera (their depth changes by 0.06 mm per column, a slice is 7.9 mm), so that is one bit per
+    // surface, or two in a column whose footprint straddles a slice boundary: the floor's 5 mm of depth
+    // cross at most one boundary, along one line of columns (at most its 88-column side).
     const int floorColumns = grid.coveredColumns(kFloorHalf, 0.0f);
     const int markerColumns = grid.coveredColumns(kMarkerHalf, kMarkerHeight);
     ASSERT_GT(floorColumns, kColumns * kColumns / 3);  // the floor covers about 47 % of the view
     ASSERT_GT(markerColumns, 200);
+    const int floorSide = static_cast<int>(std::sqrt(static_cast<double>(floorColumns)));
     // Tolerance: the rasteriser and this count test the same column centres, so only a centre within
     // float rounding of a square's edge may go either way (GL's tie rule against the <= here); the
-    // squares' perimeters cross about 450 columns. Measured: exact.
-    constexpr double kEdgeTies = 8.0;
-    EXPECT_NEAR(static_cast<double>(grid.voxels.countOccupied()), floorColumns + markerColumns, kEdgeTies)
+    // squares' perimeters cross about 450 columns. Measured: none.
+    constexpr int kEdgeTies = 8;
+    const auto occupied = static_cast<int>(grid.voxels.countOccupied());
+    EXPECT_GE(occupied, floorColumns + markerColumns - kEdgeTies);
+    EXPECT_LE(occupied, floorColumns + markerColumns + floorSide + kEdgeTies)
         << "floor " << floorColumns << " + marker " << markerColumns << " columns";
 }
 
@@ -220,21 +230,25 @@ TEST_F(ScreenVoxelsGpuTest, MarchSeesTheVoxelizedOccludersOnly) {
         {{1.5f, 0.0f, 0.0f}, {3.0f, 0.0f, -0.5f}},    // 5: through the wall beside the frustum (at t = 2/3)
         {{0.3f, 0.0f, 4.0f}, {0.0f, 0.0f, 6.5f}},     // 6: through the wall behind the camera (at t = 0.8)
     };
-    const std::vector<float> f = march(grid, segments);
-    // Blocked segments stop at their first occupied sample: at most one step before the crossing, and
-    // one more for the thick ray's extra bit each side.
-    const float step = 1.0f / kSteps;
-    EXPECT_LE(f[0], 0.5f);
-    EXPECT_GE(f[0], 0.5f - 2.0f * step);
-    EXPECT_EQ(f[1], 1.0f);
-    EXPECT_EQ(f[2], 1.0f) << "binary voxels see the empty space behind the first surface";
-    EXPECT_LE(f[3], 0.5f);
-    EXPECT_GE(f[3], 0.5f - 2.0f * step);
-    EXPECT_EQ(f[4], 1.0f);
-    // The documented limitation: the voxelization only holds what the camera sees, so occluders outside
-    // its frustum (beside it, behind the camera) do not block.
-    EXPECT_EQ(f[5], 1.0f);
-    EXPECT_EQ(f[6], 1.0f);
+    for (March how : {March::Uniform, March::Columns}) {
+        SCOPED_TRACE(how == March::Uniform ? "voxelMarch" : "voxelTrace");
+        const std::vector<float> f = march(grid, segments, how);
+        // Blocked segments stop at their first occupied sample (voxelMarch: at most one step before the
+        // crossing, and one more for the thick ray's extra bit each side) or column (voxelTrace: where
+        // the segment enters the crossing's column, or one before it for the extra bit).
+        const float step = 1.0f / kSteps;
+        EXPECT_LE(f[0], 0.5f);
+        EXPECT_GE(f[0], 0.5f - 2.0f * step);
+        EXPECT_EQ(f[1], 1.0f);
+        EXPECT_EQ(f[2], 1.0f) << "binary voxels see the empty space behind the first surface";
+        EXPECT_LE(f[3], 0.5f);
+        EXPECT_GE(f[3], 0.5f - 2.0f * step);
+        EXPECT_EQ(f[4], 1.0f);
+        // The documented limitation: the voxelization only holds what the camera sees, so occluders
+        // outside its frustum (beside it, behind the camera) do not block.
+        EXPECT_EQ(f[5], 1.0f);
+        EXPECT_EQ(f[6], 1.0f);
+    }
 }
 
 TEST_F(ScreenVoxelsGpuTest, OriginBiasKeepsASegmentOffItsOwnSurface) {
@@ -246,7 +260,77 @@ TEST_F(ScreenVoxelsGpuTest, OriginBiasKeepsASegmentOffItsOwnSurface) {
     // the camera the origin clears its surface's slice, widened by the thickness, after thickness + 1
     // slice depths: the bias the techniques' rayBias is counted in.
     const float bias = (kThickness + 1) * grid.sliceDepth();
-    const std::vector<float> f = march(grid, {{onSurface, target}, {onSurface + bias * normal, target}});
-    EXPECT_EQ(f[0], 0.0f);
-    EXPECT_EQ(f[1], 1.0f);
+    for (March how : {March::Uniform, March::Columns}) {
+        const std::vector<float> f = march(grid, {{onSurface, target}, {onSurface + bias * normal, target}}, how);
+        EXPECT_EQ(f[0], 0.0f);
+        EXPECT_EQ(f[1], 1.0f);
+    }
+}
+
+namespace {
+// A 4 cm board 0.76 m above a floor (a table top), 1.2 m x 0.8 m, seen from 3 m away at 1.1 m eye
+// height: at 7-8 degrees, nearly edge-on, as furnished-room's table. A back wall 2 m behind it bounds
+// the depth range.
+constexpr float kBoardTop = 0.76f, kBoardThickness = 0.04f;  // metres
+Scene boardScene() {
+    Scene s;
+    s.name = "board";
+    addObject(s, square("floor", {0, 0, 0}, {3, 0, 0}, {0, 0, 3}, {0, 1, 0}));
+    addObject(s, square("back", {0, 1.3f, -2}, {3, 0, 0}, {0, 1.3f, 0}, {0, 0, 1}));
+    MeshBuilder board("board");
+    board.axisBox({-0.6f, kBoardTop - kBoardThickness, -0.4f}, {0.6f, kBoardTop, 0.4f});
+    addObject(s, board.take());
+    s.camera.position = {0.3f, 1.1f, 3.0f};
+    s.camera.target = {0, 0.5f, 0};
+    s.camera.up = {0, 1, 0};
+    s.camera.verticalFov = glm::radians(60.0f);
+    s.camera.nearPlane = 0.01f;
+    s.camera.farPlane = 20.0f;
+    EXPECT_TRUE(finalizeScene(s).ok());
+    return s;
+}
+
+// Vertical segments through the board from 5 cm above the floor to 2.6 m (a ceiling's height), on a grid
+// over its top: the floor-to-ceiling paths of furnished-room's indirect shadow under its table.
+std::vector<Segment> throughTheBoard() {
+    std::vector<Segment> segments;
+    for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 24; ++i) {
+            const glm::vec3 p(-0.55f + 0.0478f * i, 0.0f, -0.35f + 0.0467f * j);
+            segments.push_back({p + glm::vec3(0, 0.05f, 0), p + glm::vec3(0, 2.6f, 0)});
+        }
+    return segments;
+}
+}  // namespace
+
+TEST_F(ScreenVoxelsGpuTest, GrazingSurfacesHaveNoDepthGaps) {
+    // Seen at 7-8 degrees, the board's top spans several slices of depth within one column (its
+    // footprint); with only the centre's bit set, a segment crossing it elsewhere in the column found
+    // an empty slice. Without the extra bit each side (thickness 0), every vertical segment through the
+    // board must meet its bits in the column where it crosses.
+    const Scene scene = boardScene();
+    Grid grid(scene);
+    const std::vector<float> f = march(grid, throughTheBoard(), March::Columns, /*thickness=*/0);
+    int free = 0;
+    for (float v : f) free += v >= 1.0f;
+    EXPECT_EQ(free, 0) << "of " << f.size() << " segments through the board";
+}
+
+TEST_F(ScreenVoxelsGpuTest, UniformSamplesMissWhatTheColumnTraversalFinds) {
+    // The thesis's uniform samples test one column per sample: a segment 2.55 m long has its 16 samples
+    // 16 cm apart, several columns apart on screen, and finds the board only where a sample's slice
+    // range (widened by the thick ray's bit) reaches the board's bits in that sample's column. The
+    // column traversal tests every column the segment crosses. Measured: uniform misses 5 of 384
+    // (145 when the voxelization set only each column's centre depth), the traversal none (2 then).
+    const Scene scene = boardScene();
+    Grid grid(scene);
+    const std::vector<Segment> segments = throughTheBoard();
+    int missedUniform = 0, missedColumns = 0;
+    for (float v : march(grid, segments, March::Uniform)) missedUniform += v >= 1.0f;
+    for (float v : march(grid, segments, March::Columns)) missedColumns += v >= 1.0f;
+    RecordProperty("missedUniform", missedUniform);
+    std::printf("segments through the board missed: uniform %d, columns %d of %zu\n", missedUniform, missedColumns,
+                segments.size());
+    EXPECT_EQ(missedColumns, 0);
+    EXPECT_GT(missedUniform, 0);
 }
