@@ -1,0 +1,42 @@
+// Optional VPL-to-receiver visibility of the RSM-family gathers (rsm, isr, hisr, multires-splat), beyond
+// Nichols (2010) ch. 3-4, whose gathers have none: the segment from the receiver to the VPL, both ends
+// moved off their surfaces along their normals by u_rayBias slice depths (the origin bias of §5.3.3.1),
+// is tested in the screen-space voxelization of the view (ch. 5, §5.3.3; march.glsl) column by column
+// (voxelTrace, the default) or at u_raySteps uniform samples (voxelMarch, the thesis's march), and the
+// VPL counts only if the segment is free. Binary, as the thesis's per-VPL visibility bits.
+// Host uniforms (VplVisibility::setUniforms): u_vplVisibility, u_rayTrace, u_raySteps, u_rayThickness,
+// u_rayBias (slice depths). Inputs: the grid (march.glsl). Outputs: ray counters (BINDING_SSBO_VOXEL_RAYS) as
+// 64-bit sums, added once per invocation by countVplRays.
+#include "techniques/screen_voxels/march.glsl"
+uniform bool u_vplVisibility;
+uniform bool u_rayTrace;
+uniform int u_raySteps;
+uniform int u_rayThickness;
+uniform float u_rayBias;
+layout(std430, binding = BINDING_SSBO_VOXEL_RAYS) buffer VoxelRayBlock {
+    uint u_raysMarchedLow;
+    uint u_raysMarchedHigh;
+    uint u_raysBlockedLow;
+    uint u_raysBlockedHigh;
+};
+
+// 1.0 if receiver x (unit normal n) sees the VPL at p (unit normal np) in the voxel grid, else 0.0;
+// rays.x counts the segments marched, rays.y the blocked ones.
+float vplVisible(vec3 x, vec3 n, vec3 p, vec3 np, inout uvec2 rays) {
+    float bias = u_rayBias * u_voxels.depth.w;
+    vec3 a = x + bias * n, b = p + bias * np;
+    bool free = (u_rayTrace ? voxelTrace(a, b, u_rayThickness, true) : voxelMarch(a, b, u_raySteps, u_rayThickness)) >= 1.0;
+    rays += uvec2(1u, free ? 0u : 1u);
+    return free ? 1.0 : 0.0;
+}
+
+// Adds an invocation's counts to the 64-bit sums (each adder detects its own wrap of the low word, as
+// hisr's node counter).
+void countVplRays(uvec2 rays) {
+    if (!u_vplVisibility || rays.x == 0u) return;
+    uint before = atomicAdd(u_raysMarchedLow, rays.x);
+    if (before > 0xFFFFFFFFu - rays.x) atomicAdd(u_raysMarchedHigh, 1u);
+    if (rays.y == 0u) return;
+    before = atomicAdd(u_raysBlockedLow, rays.y);
+    if (before > 0xFFFFFFFFu - rays.y) atomicAdd(u_raysBlockedHigh, 1u);
+}
