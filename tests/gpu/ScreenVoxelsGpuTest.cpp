@@ -334,3 +334,20 @@ TEST_F(ScreenVoxelsGpuTest, UniformSamplesMissWhatTheColumnTraversalFinds) {
     EXPECT_EQ(missedColumns, 0);
     EXPECT_GT(missedUniform, 0);
 }
+
+TEST_F(ScreenVoxelsGpuTest, FootprintsStayWithinTheirTriangles) {
+    // Vertical segments 10 cm in front of the board's front face (two 5 cm slices of depth), from under the
+    // board to above it: free. The board's top, seen edge-on, changes depth by about 20 cm from one row
+    // of columns to the next; a fragment's footprint of +- half that, unclamped, reached 10 cm in front
+    // of the board in the row above its front edge and blocked them.
+    const Scene scene = boardScene();
+    Grid grid(scene);
+    std::vector<Segment> segments;
+    for (int i = 0; i < 24; ++i) {
+        const float x = -0.55f + 0.0478f * i;
+        segments.push_back({{x, kBoardTop - 0.3f, 0.5f}, {x, kBoardTop + 0.3f, 0.5f}});
+    }
+    int blocked = 0;
+    for (float v : march(grid, segments, March::Columns, /*thickness=*/0)) blocked += v < 1.0f;
+    EXPECT_EQ(blocked, 0) << "of " << segments.size() << " segments in front of the board";
+}

@@ -9,7 +9,7 @@
 // One draw walks the roots [u_rootFirst, u_rootEnd) (index = (layer * roots.y + y) * roots.x + x); the
 // host adds the draws (blending) so that no invocation loops past the shader loop budget
 // (gpu/ShaderLimits.h) however deep the trees.
-// u_vplVisibility (beyond the thesis, off by default): each accepted node's term times the voxel-march
+// VPL_VISIBILITY (host define; beyond the thesis, off by default): each accepted node's term times the voxel-march
 // visibility of the segment from the cell's patch to the node's VPL (screen_voxels/vpl_visibility.glsl).
 // Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers, u_rootFirst, u_rootEnd,
 // vpl_visibility.glsl's (the voxel grid and ray counters when visibility is on).
@@ -53,7 +53,7 @@ vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n, inout uvec2 rays) {
     if (g.w <= 0.0) return vec3(0.0);
     Vpl v = patchVpl(s_lightGeometry, s_lightNormal, node, level, g, texelFetch(s_lightFlux, node, level));
     vec3 e = vplIrradiance(v, x, n, true, 0.0);
-    if (u_vplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
+    if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
     return e;
 }
 

@@ -8,7 +8,7 @@
 // which keeps texture detail under coarse patches.
 // One draw sums the VPLs [u_vplFirst, min(u_vplEnd, count)); the host adds the draws (blending) so that
 // no invocation loops past the shader loop budget (gpu/ShaderLimits.h).
-// u_vplVisibility (beyond the thesis, off by default): each VPL's term times the voxel-march visibility
+// VPL_VISIBILITY (host define; beyond the thesis, off by default): each VPL's term times the voxel-march visibility
 // of the segment from the cell's patch to the VPL (screen_voxels/vpl_visibility.glsl).
 // Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd, vpl_visibility.glsl's. Inputs: eye pyramid
 // (BINDING_TEX_TECH0, TECH1), Vpl[] and the VPL count (BINDING_SSBO_TECH0, TECH1), the voxel grid when
@@ -41,7 +41,7 @@ void main() {
         Vpl v = u_vpls[j];
         if (v.position.w < 0.5) continue;
         vec3 e = vplIrradiance(v, x, n, true, 0.0);
-        if (u_vplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
+        if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
         irradiance += e;
     }
     countVplRays(rays);

@@ -5,7 +5,7 @@
 // Lambert part of the receiver's BRDF is applied per pixel after upsampling (combine.frag).
 // Mode A with glossy shading (u_glossy) also writes the glossy radiance f_spec(V_sl, V_eye) * E at the
 // patch (common/brdf.glsl's GGX lobe, material of the cell's central pixel) to a second atlas.
-// With u_vplVisibility (beyond the thesis) E is multiplied by the pair's visibility v_visibility, which
+// With VPL_VISIBILITY (beyond the thesis) E is multiplied by the pair's visibility v_visibility, which
 // splat.vert computes (0 or 1; 1 when visibility is off).
 // Host uniforms: u_minDistance2 (m^2), u_glossy. Inputs: see subsplat.glsl, v_visibility.
 // Outputs: location 0 irradiance W/m^2; location 1 (u_glossy) glossy radiance W/(m^2 sr).

@@ -1,7 +1,7 @@
 // Subsplat splatting (Nichols 2010 §3.2.4): every subsplat of the shared list is drawn as a GL point
 // once per VPL (instance; mode A: each subsplat once, its VPL in w), at its texel of the flattened
 // multiresolution buffer.
-// u_vplVisibility (beyond the thesis, off by default): the voxel-march visibility of the segment from the
+// VPL_VISIBILITY (host define; beyond the thesis, off by default): the voxel-march visibility of the segment from the
 // subsplat's patch to the VPL (screen_voxels/vpl_visibility.glsl), which splat.frag multiplies E by: each
 // point is one subsplat-VPL pair, the per-receiver per-VPL evaluation the gathers have in their loops.
 // Tested here, once per point, rather than in the fragment shader, where llvmpipe shades a point's
@@ -24,7 +24,7 @@ void main() {
     v_subsplat = a_subsplat;
     v_vpl = u_perVpl ? a_subsplat.w : gl_InstanceID;
     v_visibility = 1.0;
-    if (u_vplVisibility) {
+    if (kVplVisibility) {
         Patch p = subsplatPatch(a_subsplat.x, a_subsplat.yz);
         Vpl v = u_vpls[v_vpl];
         if (any(greaterThan(patchIrradiance(p, v), vec3(0.0)))) {

@@ -9,7 +9,7 @@
 // each); the host adds the batches by blending (RsmTechnique.cpp). The cache is read as textures in
 // nested loops: on llvmpipe an SSBO index or an integer division per VPL costs more than the VPL's
 // arithmetic (measured in docs/techniques/rsm.md).
-// u_vplVisibility (bounce's extension beyond the thesis, off by default): each VPL's E_j times the
+// VPL_VISIBILITY (host define; bounce's extension beyond the thesis, off by default): each VPL's E_j times the
 // voxel-march visibility of the segment from the pixel to the VPL (screen_voxels/vpl_visibility.glsl).
 // Host uniforms: u_rowFirst, u_rowEnd, u_grid, u_diskForm, u_minDistance2 (m^2), u_glossy, and
 // vpl_visibility.glsl's. Inputs: G-buffer, u_frame, VPL cache textures (BINDING_TEX_TECH0..2: position,
@@ -51,7 +51,7 @@ void main() {
             v.flux = texelFetch(s_vplFlux, t, 0);
             vec3 ej = vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
             // Only VPLs that contribute are marched: the test costs up to u_raySteps loop iterations.
-            if (u_vplVisibility && any(greaterThan(ej, vec3(0.0))))
+            if (kVplVisibility && any(greaterThan(ej, vec3(0.0))))
                 ej *= vplVisible(s.position, s.normal, v.position.xyz, v.normal.xyz, rays);
             irradiance += ej;
             if (u_glossy)

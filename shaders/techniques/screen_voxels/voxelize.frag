@@ -5,23 +5,28 @@
 // bits together (glLogicOp(GL_OR) on RGBA32UI targets). Slices are linear in view depth between the
 // grid's near and far (as Eisemann & Décoret's uniform slicing). Output target k holds bits
 // 128k .. 128k + 127 (component c, bit b = slice 128k + 32c + b).
-// Inputs: scene.vert's world position, u_voxels (BINDING_UBO_VOXELS). Outputs: up to SV_MAX_LAYERS uvec4.
+// Inputs: voxelize.geom's world position and triangle depth range, u_voxels (BINDING_UBO_VOXELS).
+// Outputs: up to SV_MAX_LAYERS uvec4.
 #include "techniques/screen_voxels/screen_voxels_shared.h"
 layout(std140, binding = BINDING_UBO_VOXELS) uniform VoxelBlock { ScreenVoxelsGpu u_voxels; };
-in vec3 v_posWorld;
+in vec3 g_posWorld;
+flat in vec2 g_depthRange;
 layout(location = 0) out uvec4 o_bits[SV_MAX_LAYERS];
 
 void main() {
-    float z = -(u_voxels.viewFromWorld * vec4(v_posWorld, 1.0)).z;
+    float z = -(u_voxels.viewFromWorld * vec4(g_posWorld, 1.0)).z;
     // The depth the surface spans over this column: a planar triangle's depth changes by dFdx(z),
     // dFdy(z) from column to column, so its footprint is z +- half their sum. Setting only the bit of
     // the centre's depth left a surface seen at a grazing angle (a floor, a table top at eye level)
     // with empty slices between its columns' bits, through which rays passed undetected
     // (ScreenVoxelsGpuTest.GrazingSurfacesHaveNoDepthGaps).
+    // The footprint is kept within the triangle's own depth range (voxelize.geom): half a column past
+    // its edge it would claim depths the surface does not reach.
     float halfFootprint = 0.5 * (abs(dFdx(z)) + abs(dFdy(z)));
+    float zLo = max(z - halfFootprint, g_depthRange.x), zHi = min(z + halfFootprint, g_depthRange.y);
     int bits = int(u_voxels.grid.z);
-    float u0 = (z - halfFootprint - u_voxels.depth.x) * u_voxels.depth.z;
-    float u1 = (z + halfFootprint - u_voxels.depth.x) * u_voxels.depth.z;
+    float u0 = (min(zLo, z) - u_voxels.depth.x) * u_voxels.depth.z;
+    float u1 = (max(zHi, z) - u_voxels.depth.x) * u_voxels.depth.z;
     uvec4 words[SV_MAX_LAYERS];
     for (int k = 0; k < SV_MAX_LAYERS; ++k) words[k] = uvec4(0u);
     if (u1 >= 0.0 && u0 < float(bits)) {  // else outside the grid's depth range: not represented

@@ -55,19 +55,21 @@ Expected<void> HisrTechnique::setup(const SetupContext&) {
                          "lower maxDepth{}",
                          m_maxDepth, m_visibility->enabled() ? " with vplVisibility" : "", walk,
                          gl::kShaderLoopIterationBudget, m_visibility->enabled() ? ", voxelColumns or voxelBits" : "");
-    BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                             {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}}}));
+    BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather",
+                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}},
+                                             m_visibility->defines()}));
     m_gatherCounts = gl::Buffer::create("hisr.gatherCounts", 3 * sizeof(uint32_t));
     return {};
 }
 
 int HisrTechnique::rootWalkIterations(int depth) const {
     // A root's walk visits at most (4^(d+1) - 1) / 3 nodes at depth d, each one iteration of the walk plus
-    // at most one climbing iteration; the nodes it accepts form a cut of the root's quadtree, at most
-    // 4^d of them, each with one visibility test when that is on.
+    // at most one climbing iteration. llvmpipe counts a SIMD vector's iterations (VplVisibility.h), and
+    // the lanes accept nodes at different steps, so with visibility every step of the walk may run one
+    // visibility test.
     const int nodes = ((1 << (2 * (depth + 1))) - 1) / 3;
-    const int accepted = 1 << (2 * depth);
-    return 2 * nodes + accepted * m_visibility->loopIterationsPerTest();
+    return 2 * nodes * (1 + m_visibility->loopIterationsPerTest());
 }
 
 void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {

@@ -62,8 +62,10 @@ Expected<void> IsrTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
     BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
-    BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                            {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}}}));
+    BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather",
+                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}},
+                                             m_visibility->defines()}));
     BOUNCE_TRY(m_clusters, gl::Program::build({"isr.clusters", {{GL_COMPUTE_SHADER, "techniques/isr/clusters.comp"}}}));
     m_count = gl::Buffer::create("isr.vplCount", sizeof(uint32_t));
     return {};

@@ -113,7 +113,8 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
                                              {"g_subsplat"}}));
     BOUNCE_TRY(m_splat, gl::Program::build({"multiresSplat.splat",
                                             {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
-                                             {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}}}));
+                                             {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}},
+                                            m_visibility->defines()}));
     m_feedback = gl::TransformFeedback::create("multiresSplat.feedback");
     m_written = gl::Query::create("multiresSplat.written", GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     return {};

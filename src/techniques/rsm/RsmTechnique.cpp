@@ -55,8 +55,10 @@ Expected<void> RsmTechnique::setup(const SetupContext&) {
         return makeError("vplGrid={} with vplVisibility: a grid row of {} VPLs x (1 + {} march iterations) passes the "
                          "shader loop budget of {}; lower vplGrid, raySteps or voxelBits",
                          m_vplGrid, m_vplGrid, m_visibility->loopIterationsPerTest(), gl::kShaderLoopIterationBudget);
-    BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                            {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}}}));
+    BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather",
+                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}},
+                                             m_visibility->defines()}));
     m_fbo = gl::Framebuffer::create("rsm.fbo");
     return {};
 }

@@ -32,6 +32,7 @@ Expected<ScreenVoxels> ScreenVoxels::create() {
     ScreenVoxels v;
     BOUNCE_TRY(v.m_program, gl::Program::build({"screenVoxels.voxelize",
                                                 {{GL_VERTEX_SHADER, "render/scene.vert"},
+                                                 {GL_GEOMETRY_SHADER, "techniques/screen_voxels/voxelize.geom"},
                                                  {GL_FRAGMENT_SHADER, "techniques/screen_voxels/voxelize.frag"}}}));
     v.m_fbo = gl::Framebuffer::create("screenVoxels.fbo");
     v.m_ubo = gl::Buffer::create("screenVoxels.uniforms", sizeof(gpu::ScreenVoxelsGpu));

@@ -50,13 +50,16 @@ void VplVisibility::build(FrameContext& ctx) {
     m_rays.clearZero();
 }
 
+std::vector<std::pair<std::string, std::string>> VplVisibility::defines() const {
+    // vpl_visibility.glsl: 0 off, 1 column traversal (voxelTrace), 2 uniform samples (voxelMarch).
+    const char* mode = !m_settings.enabled ? "0" : m_settings.march == "columns" ? "1" : "2";
+    return {{"VPL_VISIBILITY", mode}};
+}
+
 void VplVisibility::setUniforms(gl::Program& program) const {
-    if (m_settings.enabled) {
-        m_voxels->bind();
-        m_rays.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_VOXEL_RAYS);
-    }
-    program.set("u_vplVisibility", m_settings.enabled ? 1 : 0);
-    program.set("u_rayTrace", m_settings.march == "columns" ? 1 : 0);
+    if (!m_settings.enabled) return;
+    m_voxels->bind();
+    m_rays.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_VOXEL_RAYS);
     program.set("u_raySteps", m_settings.steps);
     program.set("u_rayThickness", m_settings.thickness);
     program.set("u_rayBias", m_settings.bias);
@@ -64,16 +67,15 @@ void VplVisibility::setUniforms(gl::Program& program) const {
 
 int VplVisibility::loopIterationsPerTest() const {
     if (!m_settings.enabled) return 0;
-    const int wordsPerColumn = m_settings.bits / kBitsPerWord;
-    // uniform: each of the `steps` samples loops over at most a column's words.
-    if (m_settings.march == "uniform") return m_settings.steps * (1 + wordsPerColumn);
-    // columns: at most grid.x + grid.y - 1 columns are crossed. A column's slice range [s0, s1] takes
-    // floor(s1 / 32) - floor(s0 / 32) + 1 <= (s1 - s0) / 32 + 2 word iterations; the ranges of
-    // consecutive columns join end to end over at most `bits` slices, each widened by one slice of
-    // rounding and 2 x thickness, so all columns together take at most
-    // (bits + columns (1 + 2 thickness)) / 32 + 2 columns word iterations, plus one per column.
-    const int columns = 2 * m_settings.columns;
-    return 3 * columns + (columns * (1 + 2 * m_settings.thickness) + kBitsPerWord - 1) / kBitsPerWord + wordsPerColumn;
+    // llvmpipe counts loop iterations per SIMD vector of invocations (gallivm's loop limiter): a loop
+    // runs as often as its busiest lane needs, and a loop reached with no lane active may still count
+    // one iteration. So the bounds hold per vector: each column test (voxelBitsSet) loops over at most a
+    // column's bits / 32 words, plus one.
+    const int wordsPerColumn = m_settings.bits / kBitsPerWord + 1;
+    // uniform: `steps` samples, one column test each.
+    if (m_settings.march == "uniform") return m_settings.steps * (1 + wordsPerColumn) + 1;
+    // columns: a segment clipped to the frustum crosses at most grid.x + grid.y - 1 columns, one test each.
+    return 2 * m_settings.columns * (1 + wordsPerColumn) + 1;
 }
 
 void VplVisibility::report(FrameContext& ctx) const {

@@ -14,6 +14,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace bounce::voxels {
 
@@ -53,11 +55,14 @@ public:
     // Timer "voxelize": voxelizes the camera's view of the scene and zeroes the ray counters; nothing
     // when off.
     void build(FrameContext& ctx);
-    // The march settings as uniforms of a gather program (u_vplVisibility off when disabled); when on,
-    // also binds the grid and the ray counters (call before the gather's draws).
+    // The host define of the gather shaders (vpl_visibility.glsl's VPL_VISIBILITY): build the gather
+    // program with it, so that with visibility off the shader has no visibility code at all.
+    std::vector<std::pair<std::string, std::string>> defines() const;
+    // The march settings as uniforms of a gather program; when on, also binds the grid and the ray
+    // counters (call before the gather's draws).
     void setUniforms(gl::Program& program) const;
     // Loop iterations one visibility test may add to a shader invocation (gpu/ShaderLimits.h), 0 when
-    // off (see the .cpp for the bounds of both marches).
+    // off, counted as llvmpipe counts them: per SIMD vector of invocations (see the .cpp).
     int loopIterationsPerTest() const;
     // Counters "visibilityRays" (segments marched) and "visibilityBlocked" (of those, blocked), read
     // back from the gather shaders' sums; nothing when off.
