@@ -5,8 +5,8 @@
 // subsplat's patch to the VPL (screen_voxels/vpl_visibility.glsl), which splat.frag multiplies E by: each
 // point is one subsplat-VPL pair, the per-receiver per-VPL evaluation the gathers have in their loops.
 // Tested here, once per point, rather than in the fragment shader, where llvmpipe shades a point's
-// pixel as a 2x2 quad and its three helper invocations marched too (measured: 9.7 s against 1.8 s off
-// per 128^2 frame on furnished-room).
+// pixel as a 2x2 quad and its three helper invocations marched too (measured per 128^2 frame on
+// furnished-room: 9.7 s there, 3.2 s here, docs/techniques/multires-splat.md).
 // Host uniforms: u_origins[level] (atlas texel of each level's origin), u_atlasSize, u_perVpl,
 // u_minDistance2 and vpl_visibility.glsl's. Inputs: attribute 0 = ivec4 (level, x, y, VPL in mode A),
 // gl_InstanceID = VPL index (mode B); subsplat.glsl's and, with visibility, the voxel grid.
