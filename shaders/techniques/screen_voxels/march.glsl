@@ -64,9 +64,10 @@ void voxelClip(float f0, float f1, inout float t0, inout float t1) {
 // side: a surface crossed anywhere is found, however thin and however grazing the view of it (uniform
 // samples a column or more apart step over a table top seen edge-on; bounce's extension, the thesis
 // samples uniformly). The part of the segment outside the camera's frustum or the grid's depth range is
-// free. Cost: at most grid.x + grid.y columns; the slice ranges of consecutive columns join end to end,
-// so all columns together loop over at most 3 columns' worth of words plus the bits / 32 a full
-// column holds (VplVisibility::loopIterationsPerTest).
+// free. With skipEndColumns the columns of the segment's two end points are not tested: they hold the
+// end points' own surfaces and, at a concave edge, the adjacent one (the gathers' receivers and VPLs).
+// Cost: at most grid.x + grid.y - 1 columns, each testing at most bits / 32 words
+// (VplVisibility::loopIterationsPerTest).
 float voxelTrace(vec3 a, vec3 b, int thickness, bool skipEndColumns) {
     vec4 ca = u_voxels.clipFromWorld * vec4(a, 1.0), cb = u_voxels.clipFromWorld * vec4(b, 1.0);
     float za = -(u_voxels.viewFromWorld * vec4(a, 1.0)).z, zb = -(u_voxels.viewFromWorld * vec4(b, 1.0)).z;
@@ -82,9 +83,11 @@ float voxelTrace(vec3 a, vec3 b, int thickness, bool skipEndColumns) {
     int bits = int(u_voxels.grid.z);
     vec4 c0 = mix(ca, cb, t0), c1 = mix(ca, cb, t1);
     float z0 = mix(za, zb, t0), z1 = mix(za, zb, t1);
-    // Column coordinates of the clipped ends (kept a hair inside the grid: an end on its border).
-    vec2 p0 = clamp((c0.xy / c0.w * 0.5 + 0.5) * res, vec2(0.0), res - 1e-3);
-    vec2 p1 = clamp((c1.xy / c1.w * 0.5 + 0.5) * res, vec2(0.0), res - 1e-3);
+    // Column coordinates of the clipped ends, kept kInside columns inside the grid: an end clipped to
+    // the frustum's far side lies on the border, whose floor() would be one column past the grid.
+    const float kInside = 1e-3;  // columns
+    vec2 p0 = clamp((c0.xy / c0.w * 0.5 + 0.5) * res, vec2(0.0), res - kInside);
+    vec2 p1 = clamp((c1.xy / c1.w * 0.5 + 0.5) * res, vec2(0.0), res - kInside);
     vec2 d = p1 - p0;
     ivec2 cell = ivec2(floor(p0));
     ivec2 first = cell, last = ivec2(floor(p1));

@@ -5,6 +5,7 @@
 #include "techniques/screen_voxels/VplVisibility.h"
 
 #include "gpu/Bindings.h"
+#include "gpu/ShaderLimits.h"
 
 #include <cstdint>
 
@@ -38,6 +39,12 @@ Expected<VplVisibility> VplVisibility::create(const VplVisibilitySettings& setti
     v.m_settings = settings;
     if (!settings.enabled) return v;
     BOUNCE_TRY_VOID(checkGrid(GridSize{glm::ivec2(settings.columns), settings.bits}, "voxelColumns", "voxelBits"));
+    // The gathers batch VPLs down to one per draw; one test must fit the shader loop budget by itself.
+    if (v.loopIterationsPerTest() + 1 > gl::kShaderLoopIterationBudget)
+        return makeError("voxelColumns={} voxelBits={} rayMarch={} raySteps={}: one visibility test may take {} loop "
+                         "iterations, past the shader loop budget of {}",
+                         settings.columns, settings.bits, settings.march, settings.steps, v.loopIterationsPerTest(),
+                         gl::kShaderLoopIterationBudget);
     BOUNCE_TRY(v.m_voxels, ScreenVoxels::create());
     v.m_rays = gl::Buffer::create("vplVisibility.rays", 4 * sizeof(uint32_t));
     return v;

@@ -25,9 +25,10 @@ struct VplVisibilitySettings {
     bool enabled = false;  // off: the thesis's gathers, no indirect visibility
     int columns = 128;     // voxel columns per side (thesis §5.3.3: 128^2 "almost indistinguishable" from 1024^2)
     int bits = 128;        // depth slices per column (thesis: 128, one RGBA32UI target)
-    // How a segment is tested: "columns" visits every voxel column it crosses (voxelTrace, bounce's
-    // extension); "uniform" samples it at `steps` points (voxelMarch, the thesis's march), which steps
-    // over thin occluders seen at grazing angles (a table top at eye level; docs/techniques/rsm.md).
+    // How a segment is tested: "columns" visits every voxel column it crosses but its end points' own
+    // (voxelTrace, bounce's extension); "uniform" samples it at `steps` points (voxelMarch, the thesis's
+    // march), which steps over thin occluders seen at grazing angles (a table top at eye level;
+    // docs/techniques/rsm.md, "VPL visibility").
     std::string march{"columns"};
     int steps = 16;        // uniform march samples per segment: an assumption, the thesis gives no count
     // Extra bits each side of a sample's slice range (§5.3.3.1's thick ray). 0 by default: the column
