@@ -13,6 +13,7 @@
 // Shader storage buffers
 #define BINDING_SSBO_OBJECTS 0    // ObjectGpu[]: worldFromObject, normal matrix, material index
 #define BINDING_SSBO_MATERIALS 1  // MaterialGpu[]
+#define BINDING_SSBO_VOXEL_RAYS 2  // ray counters of the RSM-family gathers' optional VPL visibility (screen_voxels)
 #define BINDING_SSBO_TECH0 4      // technique-owned buffers start here
 #define BINDING_SSBO_TECH1 5
 #define BINDING_SSBO_TECH2 6

@@ -20,6 +20,7 @@ Expected<Scene> buildAtrium(const SceneParams& params);
 Expected<Scene> buildCornellBoxRotating(const SceneParams& params);
 Expected<Scene> buildIndirectLight(const SceneParams& params);
 Expected<Scene> buildAreaScreen(const SceneParams& params);
+Expected<Scene> buildFurnishedRoom(const SceneParams& params);
 
 // Reads parameter `key` of built-in `scene` as a number in [lo, hi], or `fallback` when absent.
 Expected<double> numberParam(const SceneParams& params, std::string_view scene, const std::string& key,

@@ -63,6 +63,11 @@ const std::vector<BuiltinEntry>& registry() {
           {{"pattern", "bars: the screen's video, bars (a colour-bar test card of 4 frames at 2 fps) or square (a "
                        "white square bouncing on black); both emit the same mean flux"}}},
          buildAreaScreen},
+        {{"furnished-room",
+          "Closed 4 m x 2.6 m x 4 m living room lit by a spot pointing at the ceiling, with an open bookshelf and "
+          "a table casting large indirect shadows (the floor under the table, the shelf's compartments)",
+          {{"furniture", "all: the shelf and the table; none: the empty room (same walls, light and camera)"}}},
+         buildFurnishedRoom},
     };
     return entries;
 }

@@ -9,7 +9,10 @@
 // One draw walks the roots [u_rootFirst, u_rootEnd) (index = (layer * roots.y + y) * roots.x + x); the
 // host adds the draws (blending) so that no invocation loops past the shader loop budget
 // (gpu/ShaderLimits.h) however deep the trees.
-// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers, u_rootFirst, u_rootEnd.
+// VPL_VISIBILITY (host define; beyond the thesis, off by default): each accepted node's term times the voxel-march
+// visibility of the segment from the cell's patch to the node's VPL (screen_voxels/vpl_visibility.glsl).
+// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers, u_rootFirst, u_rootEnd,
+// vpl_visibility.glsl's (the voxel grid and ray counters when visibility is on).
 // Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), light pyramid geometry/normal/normalMax/flux
 // (BINDING_TEX_INPUT0..3). Outputs: atlas irradiance (alpha 1); counters (BINDING_SSBO_TECH0): visited
 // nodes as a 64-bit sum (low word, carries into the high word: at 1024^2, up to 2^20 fragments x 5376
@@ -17,6 +20,7 @@
 // shaded, summed over the draws).
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
+#include "techniques/screen_voxels/vpl_visibility.glsl"
 // The stencil set-up chose which cells of this level rectangle gather; the atomics below are side
 // effects, and without this qualifier GL runs the stencil test after the shader (GL 4.5, "Early
 // Per-Fragment Tests"), so every fragment of the rectangle would walk the tree and the stencil would
@@ -44,11 +48,13 @@ layout(location = 0) out vec4 o_irradiance;
 
 // An accepted node is one VPL (vpl.glsl patchVpl: on the RSM sample at the node's centre, with the
 // node's summed flux and area), as isr's clusters.
-vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n) {
+vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n, inout uvec2 rays) {
     vec4 g = texelFetch(s_lightGeometry, node, level);
     if (g.w <= 0.0) return vec3(0.0);
     Vpl v = patchVpl(s_lightGeometry, s_lightNormal, node, level, g, texelFetch(s_lightFlux, node, level));
-    return vplIrradiance(v, x, n, true, 0.0);
+    vec3 e = vplIrradiance(v, x, n, true, 0.0);
+    if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
+    return e;
 }
 
 void main() {
@@ -57,6 +63,7 @@ void main() {
     vec3 x = g.xyz / g.w;
     vec3 n = normalize(texelFetch(s_normal, cell, u_level).xyz + vec3(0.0, 0.0, 1e-12));
     vec3 irradiance = vec3(0.0);
+    uvec2 rays = uvec2(0u);
     uint visited = 0u;
     ivec2 roots = textureSize(s_lightGeometry, u_rootLevel).xy;
     int finest = max(u_rootLevel - u_maxDepth, 0);
@@ -85,7 +92,7 @@ void main() {
                 level -= 1;
                 continue;
             }
-            if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n);
+            if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n, rays);
             while (level < u_rootLevel && (cellXY.x & 1) == 1 && (cellXY.y & 1) == 1) {
                 cellXY /= 2;
                 level += 1;
@@ -99,5 +106,6 @@ void main() {
     uint before = atomicAdd(u_nodesLow, visited);
     if (before > 0xFFFFFFFFu - visited) atomicAdd(u_nodesHigh, 1u);
     atomicAdd(u_invocations, 1u);
+    countVplRays(rays);
     o_irradiance = vec4(irradiance, 1.0);
 }

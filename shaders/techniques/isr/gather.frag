@@ -8,10 +8,14 @@
 // which keeps texture detail under coarse patches.
 // One draw sums the VPLs [u_vplFirst, min(u_vplEnd, count)); the host adds the draws (blending) so that
 // no invocation loops past the shader loop budget (gpu/ShaderLimits.h).
-// Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd. Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), Vpl[] and
-// the VPL count (BINDING_SSBO_TECH0, TECH1). Output: atlas RGBA32F.
+// VPL_VISIBILITY (host define; beyond the thesis, off by default): each VPL's term times the voxel-march visibility
+// of the segment from the cell's patch to the VPL (screen_voxels/vpl_visibility.glsl).
+// Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd, vpl_visibility.glsl's. Inputs: eye pyramid
+// (BINDING_TEX_TECH0, TECH1), Vpl[] and the VPL count (BINDING_SSBO_TECH0, TECH1), the voxel grid when
+// visibility is on. Output: atlas RGBA32F; ray counters.
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
+#include "techniques/screen_voxels/vpl_visibility.glsl"
 // Only the stencilled cells of the level rectangle may run the loop. This shader has no side effects,
 // so GL already allows the stencil test before it (llvmpipe does it: same frame time with and without
 // the qualifier); the qualifier makes it required, so a counter added here later cannot silently turn
@@ -31,11 +35,15 @@ void main() {
     vec3 x = g.xyz / g.w;
     vec3 n = normalize(texelFetch(s_normal, cell, u_level).xyz + vec3(0.0, 0.0, 1e-12));
     vec3 irradiance = vec3(0.0);
+    uvec2 rays = uvec2(0u);
     uint end = min(u_vplEnd, u_vplCount);
     for (uint j = u_vplFirst; j < end; ++j) {
         Vpl v = u_vpls[j];
         if (v.position.w < 0.5) continue;
-        irradiance += vplIrradiance(v, x, n, true, 0.0);
+        vec3 e = vplIrradiance(v, x, n, true, 0.0);
+        if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
+        irradiance += e;
     }
+    countVplRays(rays);
     o_irradiance = vec4(irradiance, 1.0);
 }

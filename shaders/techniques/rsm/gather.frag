@@ -9,13 +9,17 @@
 // each); the host adds the batches by blending (RsmTechnique.cpp). The cache is read as textures in
 // nested loops: on llvmpipe an SSBO index or an integer division per VPL costs more than the VPL's
 // arithmetic (measured in docs/techniques/rsm.md).
-// Host uniforms: u_rowFirst, u_rowEnd, u_grid, u_diskForm, u_minDistance2 (m^2), u_glossy.
-// Inputs: G-buffer, u_frame, VPL cache textures (BINDING_TEX_TECH0..2: position, normal, flux;
-// vpl.glsl's fields). Output: indirect radiance W/(m^2 sr), RGBA32F.
+// VPL_VISIBILITY (host define; bounce's extension beyond the thesis, off by default): each VPL's E_j times the
+// voxel-march visibility of the segment from the pixel to the VPL (screen_voxels/vpl_visibility.glsl).
+// Host uniforms: u_rowFirst, u_rowEnd, u_grid, u_diskForm, u_minDistance2 (m^2), u_glossy, and
+// vpl_visibility.glsl's. Inputs: G-buffer, u_frame, VPL cache textures (BINDING_TEX_TECH0..2: position,
+// normal, flux; vpl.glsl's fields), the voxel grid when visibility is on. Output: indirect radiance
+// W/(m^2 sr), RGBA32F; ray counters.
 #include "common/gbuffer.glsl"
 #include "common/frame.glsl"
 #include "techniques/rsm/glossy.glsl"
 #include "techniques/nichols/vpl.glsl"
+#include "techniques/screen_voxels/vpl_visibility.glsl"
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_vplPosition;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_vplNormal;
 layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_vplFlux;
@@ -35,6 +39,7 @@ void main() {
     }
     vec3 e = normalize(u_frame.eyePosition.xyz - s.position);
     vec3 irradiance = vec3(0.0), glossy = vec3(0.0);
+    uvec2 rays = uvec2(0u);
     for (int row = u_rowFirst; row < u_rowEnd; ++row) {
         const int layer = row / u_grid, y = row - layer * u_grid;
         for (int x = 0; x < u_grid; ++x) {
@@ -45,11 +50,15 @@ void main() {
             v.normal = texelFetch(s_vplNormal, t, 0);
             v.flux = texelFetch(s_vplFlux, t, 0);
             vec3 ej = vplIrradiance(v, s.position, s.normal, u_diskForm, u_minDistance2);
+            // Only VPLs that contribute are marched: the test costs up to u_raySteps loop iterations.
+            if (kVplVisibility && any(greaterThan(ej, vec3(0.0))))
+                ej *= vplVisible(s.position, s.normal, v.position.xyz, v.normal.xyz, rays);
             irradiance += ej;
             if (u_glossy)
                 glossy += glossyBrdf(s.normal, normalize(v.position.xyz - s.position), e, s.albedo, s.roughness,
                                      s.metallic, s.specularF0) * ej;
         }
     }
+    countVplRays(rays);
     o_radiance = vec4((1.0 - s.metallic) * s.albedo * kInvPi * irradiance + glossy, 1.0);
 }

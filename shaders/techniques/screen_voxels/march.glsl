@@ -1,5 +1,5 @@
 // Voxel ray marching through the screen-space binary voxelization (Nichols 2010 §5.3.3.1, checklist
-// item 19). The thesis found a 3D DDA slow on its GPU ("varying numbers of loop iterations") and
+// item 19): voxelMarch, the thesis's uniform samples, and voxelTrace, an exact column traversal. The thesis found a 3D DDA slow on its GPU ("varying numbers of loop iterations") and
 // samples the segment uniformly instead; thin occluders a sample skips are partly caught "by checking
 // multiple bits in texels fetched from the voxel buffer. This essentially thickens the ray": each of
 // the `steps` segments tests every bit between the slices of its two ends, widened by `thickness`
@@ -42,6 +42,86 @@ float voxelMarch(vec3 a, vec3 b, int steps, int thickness) {
         if (s0 > s1) continue;
         ivec2 texel = clamp(ivec2((ndc * 0.5 + 0.5) * res), ivec2(0), ivec2(res) - 1);
         if (voxelBitsSet(texel, s0, s1)) return (float(i) - 1.0) / float(steps);
+    }
+    return 1.0;
+}
+
+// Shortens [t0, t1] to where f0 + t (f1 - f0) >= 0 (Liang-Barsky clipping of a segment by one plane).
+void voxelClip(float f0, float f1, inout float t0, inout float t1) {
+    if (f0 < 0.0 && f1 < 0.0) {
+        t1 = -1.0;  // wholly outside
+    } else if (f0 < 0.0) {
+        t0 = max(t0, f0 / (f0 - f1));
+    } else if (f1 < 0.0) {
+        t1 = min(t1, f0 / (f0 - f1));
+    }
+}
+
+// Fraction of the segment a -> b (world) before the first voxel column in which it meets an occupied
+// bit, 1.0 when it meets none. Unlike voxelMarch's uniform samples, this visits every column the
+// segment's projection crosses (a 2D DDA over the grid, Amanatides & Woo 1987) and tests the slices
+// between the segment's depths where it enters and leaves that column, widened by `thickness` bits each
+// side: a surface crossed anywhere is found, however thin and however grazing the view of it (uniform
+// samples a column or more apart step over a table top seen edge-on; bounce's extension, the thesis
+// samples uniformly). The part of the segment outside the camera's frustum or the grid's depth range is
+// free. With skipEndColumns the columns of the segment's two end points are not tested: they hold the
+// end points' own surfaces and, at a concave edge, the adjacent one (the gathers' receivers and VPLs).
+// Cost: at most grid.x + grid.y - 1 columns, each testing at most bits / 32 words
+// (VplVisibility::loopIterationsPerTest).
+float voxelTrace(vec3 a, vec3 b, int thickness, bool skipEndColumns) {
+    vec4 ca = u_voxels.clipFromWorld * vec4(a, 1.0), cb = u_voxels.clipFromWorld * vec4(b, 1.0);
+    float za = -(u_voxels.viewFromWorld * vec4(a, 1.0)).z, zb = -(u_voxels.viewFromWorld * vec4(b, 1.0)).z;
+    float t0 = 0.0, t1 = 1.0;
+    voxelClip(ca.w + ca.x, cb.w + cb.x, t0, t1);
+    voxelClip(ca.w - ca.x, cb.w - cb.x, t0, t1);
+    voxelClip(ca.w + ca.y, cb.w + cb.y, t0, t1);
+    voxelClip(ca.w - ca.y, cb.w - cb.y, t0, t1);
+    voxelClip(za - u_voxels.depth.x, zb - u_voxels.depth.x, t0, t1);
+    voxelClip(u_voxels.depth.y - za, u_voxels.depth.y - zb, t0, t1);
+    if (t0 >= t1) return 1.0;
+    vec2 res = u_voxels.grid.xy;
+    int bits = int(u_voxels.grid.z);
+    vec4 c0 = mix(ca, cb, t0), c1 = mix(ca, cb, t1);
+    float z0 = mix(za, zb, t0), z1 = mix(za, zb, t1);
+    // Column coordinates of the clipped ends, kept kInside columns inside the grid: an end clipped to
+    // the frustum's far side lies on the border, whose floor() would be one column past the grid.
+    const float kInside = 1e-3;  // columns
+    vec2 p0 = clamp((c0.xy / c0.w * 0.5 + 0.5) * res, vec2(0.0), res - kInside);
+    vec2 p1 = clamp((c1.xy / c1.w * 0.5 + 0.5) * res, vec2(0.0), res - kInside);
+    vec2 d = p1 - p0;
+    ivec2 cell = ivec2(floor(p0));
+    ivec2 first = cell, last = ivec2(floor(p1));
+    // The end points' own columns are skipped only where the segment had its ends there (not where it
+    // was clipped).
+    bool skipFirst = skipEndColumns && t0 == 0.0, skipLast = skipEndColumns && t1 == 1.0;
+    ivec2 stepDir = ivec2(sign(d));
+    const float kNever = 1e30;  // screen parameter of a boundary the segment does not cross
+    vec2 sDelta = vec2(d.x != 0.0 ? 1.0 / abs(d.x) : kNever, d.y != 0.0 ? 1.0 / abs(d.y) : kNever);
+    vec2 sMax = vec2(d.x > 0.0 ? (floor(p0.x) + 1.0 - p0.x) * sDelta.x : (d.x < 0.0 ? (p0.x - floor(p0.x)) * sDelta.x : kNever),
+                     d.y > 0.0 ? (floor(p0.y) + 1.0 - p0.y) * sDelta.y : (d.y < 0.0 ? (p0.y - floor(p0.y)) * sDelta.y : kNever));
+    float sIn = 0.0;
+    int maxCells = int(res.x + res.y);
+    for (int i = 0; i < maxCells; ++i) {
+        float sOut = min(min(sMax.x, sMax.y), 1.0);
+        // Screen parameter s -> fraction between the clipped ends (perspective: 1/w is linear in s).
+        float uIn = sIn * c0.w / ((1.0 - sIn) * c1.w + sIn * c0.w);
+        float uOut = sOut * c0.w / ((1.0 - sOut) * c1.w + sOut * c0.w);
+        float sliceIn = (mix(z0, z1, uIn) - u_voxels.depth.x) * u_voxels.depth.z;
+        float sliceOut = (mix(z0, z1, uOut) - u_voxels.depth.x) * u_voxels.depth.z;
+        int s0 = max(int(floor(min(sliceIn, sliceOut))) - thickness, 0);
+        int s1 = min(int(floor(max(sliceIn, sliceOut))) + thickness, bits - 1);
+        bool skip = (skipFirst && cell == first) || (skipLast && cell == last);
+        if (!skip && s0 <= s1 && voxelBitsSet(clamp(cell, ivec2(0), ivec2(res) - 1), s0, s1)) return mix(t0, t1, uIn);
+        if (sOut >= 1.0) break;
+        if (sMax.x < sMax.y) {
+            cell.x += stepDir.x;
+            sIn = sMax.x;
+            sMax.x += sDelta.x;
+        } else {
+            cell.y += stepDir.y;
+            sIn = sMax.y;
+            sMax.y += sDelta.y;
+        }
     }
     return 1.0;
 }

@@ -7,6 +7,9 @@
 // levels down, disk-to-point form factor per accepted node), "upsample" (§3.2.5, then x albedo/pi).
 // Counters: fragments per level, tree nodes visited per gathered fragment, gather invocations. The
 // eye-space passes are techniques/nichols/StencilledGather, shared with isr.
+// With `vplVisibility` on (beyond the thesis, off by default; techniques/screen_voxels/VplVisibility.h) a
+// "voxelize" pass voxelizes the camera's view and each accepted node's term is multiplied by a voxel
+// march from the cell's patch to the node's VPL; fewer roots per draw keep the walk within the budget.
 //
 // Deviations (docs/techniques/hisr.md): the tree is the RSM's mip chain itself (a 2D-array mipmap),
 // not the Haar-like cache-coherent re-layout of §4.2.4; Eq. 4.8 uses I = 1 (normalised light) and the
@@ -33,6 +36,7 @@ void HisrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2)");
+    m_visibilitySettings.visit(v);
 }
 
 Expected<void> HisrTechnique::setup(const SetupContext&) {
@@ -41,10 +45,31 @@ Expected<void> HisrTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
-    BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                             {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}}}));
+    BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
+    // One root is the smallest draw: its walk must fit the shader loop budget, or llvmpipe drops nodes.
+    int rootLevel = 0;
+    for (int side = m_rsmSize; side > m_rootGrid; side /= 2) ++rootLevel;
+    const int walk = rootWalkIterations(std::min(m_maxDepth, rootLevel));
+    if (walk + 1 > gl::kShaderLoopIterationBudget)
+        return makeError("maxDepth={}{}: one root's walk may take {} loop iterations, past the shader loop budget of {}; "
+                         "lower maxDepth{}",
+                         m_maxDepth, m_visibility->enabled() ? " with vplVisibility" : "", walk,
+                         gl::kShaderLoopIterationBudget, m_visibility->enabled() ? ", voxelColumns or voxelBits" : "");
+    BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather",
+                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}},
+                                             m_visibility->defines()}));
     m_gatherCounts = gl::Buffer::create("hisr.gatherCounts", 3 * sizeof(uint32_t));
     return {};
+}
+
+int HisrTechnique::rootWalkIterations(int depth) const {
+    // A root's walk visits at most (4^(d+1) - 1) / 3 nodes at depth d, each one iteration of the walk plus
+    // at most one climbing iteration. llvmpipe counts a SIMD vector's iterations (VplVisibility.h), and
+    // the lanes accept nodes at different steps, so with visibility every step of the walk may run one
+    // visibility test.
+    const int nodes = ((1 << (2 * (depth + 1))) - 1) / 3;
+    return 2 * nodes * (1 + m_visibility->loopIterationsPerTest());
 }
 
 void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
@@ -61,6 +86,7 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_light->buildLight(*m_rsm, m_rootGrid, nichols::PyramidThresholds{});
     }
     m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
+    m_visibility->build(ctx);
     std::vector<double> fragments;
     {
         auto s = ctx.timers.scope("gather");
@@ -74,13 +100,12 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_gather.set("u_maxDepth", m_maxDepth);
         m_gather.set("u_tau", m_tau);
         m_gather.set("u_layers", m_light->layers());
-        // A root's walk visits at most (4^(d+1) - 1) / 3 nodes at depth d, each one iteration of the walk
-        // plus at most one climbing iteration: draws of as many roots as fit the shader loop budget
-        // (gpu/ShaderLimits.h), so deep trees are walked whole on llvmpipe too.
+        m_visibility->setUniforms(m_gather);
+        // Draws of as many roots as fit the shader loop budget (gpu/ShaderLimits.h), so deep trees are
+        // walked whole on llvmpipe too.
         const int rootLevel = m_light->levels() - 1;
-        const int depth = std::min(m_maxDepth, rootLevel);
-        const int nodesPerRoot = ((1 << (2 * (depth + 1))) - 1) / 3;
-        const int rootsPerDraw = std::max(1, gl::kShaderLoopIterationBudget / (2 * nodesPerRoot + 1));
+        const int rootsPerDraw =
+            std::max(1, gl::kShaderLoopIterationBudget / (rootWalkIterations(std::min(m_maxDepth, rootLevel)) + 1));
         const glm::ivec2 roots = m_light->levelSize(rootLevel);
         const int rootCount = roots.x * roots.y * m_light->layers();
         const int batches = (rootCount + rootsPerDraw - 1) / rootsPerDraw;
@@ -101,6 +126,7 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
     // = gatherFragments x gatherDraws when the stencil culls the gather (early fragment tests), more
     // when fragments the stencil rejects are shaded too (HisrGpuTest.StencilCullsTheGather).
     ctx.counters["gatherInvocations"] = static_cast<double>(counts[2]);
+    m_visibility->report(ctx);
 }
 
 }  // namespace bounce

@@ -4,6 +4,7 @@
 // traversal of a per-frame VPL tree built over the RSM (threshold tau, maximum depth 1-3).
 #include "techniques/Technique.h"
 #include "techniques/nichols/StencilledGather.h"
+#include "techniques/screen_voxels/VplVisibility.h"
 
 #include <optional>
 
@@ -19,12 +20,17 @@ public:
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
 
 private:
+    // Loop iterations of one root's walk to `depth` levels, its visibility tests included.
+    int rootWalkIterations(int depth) const;
+
     int m_rsmSize = 256;       // §4.2.1.2
     int m_rootGrid = 16;       // §4.2.4: 16^2 coarsest light patches
     int m_maxDepth = 2;        // 1..3 (32^2..128^2); 2 is an assumption within the thesis's range
     float m_tau = 0.01f;       // Eq. 4.8 threshold on the normalised bound (assumption; thesis gives none)
     int m_eyeCoarsest = 16;
     nichols::PyramidThresholds m_eyeThresholds{0.1f, 0.3f, false};
+    voxels::VplVisibilitySettings m_visibilitySettings;  // beyond the thesis; off by default
+    std::optional<voxels::VplVisibility> m_visibility;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::MinMaxPyramid> m_light;
     std::optional<nichols::StencilledGather> m_eye;

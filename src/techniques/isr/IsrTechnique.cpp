@@ -12,6 +12,9 @@
 //   "gather"          Stenciled Gathering: every marked atlas texel gathers every VPL (Eqs. 4.1-4.5).
 //   "upsample"        Upsampling: coarse-to-fine empty-aware 3x3 interpolation (§3.2.5), then x albedo/pi.
 // Counters: vpls, fragments per level ("fragments/level-k"), total gather fragments.
+// With `vplVisibility` on (beyond the thesis, off by default; techniques/screen_voxels/VplVisibility.h):
+//   "voxelize"        the camera's view voxelized; the gather multiplies each VPL's term by a voxel
+//                     march from the cell's patch to the VPL, in smaller VPL ranges per draw.
 // The eye-space passes (min-max-mipmap, stencil-setup, the stencilled draw, upsample) are
 // techniques/nichols/StencilledGather, shared with hisr; isr adds the RSM, the VPL cache and its gather.
 //
@@ -47,6 +50,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: not adopted, up to 40 % slower)");
     v.field("lightDepthThreshold", m_lightThresholds.depth, "clusters: light-space max relative distance derivative (assumption)", 0.0f, 1e9f);
     v.field("lightNormalThreshold", m_lightThresholds.normal, "clusters: light-space normal component range (assumption)", 0.0f, 2.0f);
+    m_visibilitySettings.visit(v);
 }
 
 Expected<void> IsrTechnique::setup(const SetupContext&) {
@@ -57,8 +61,11 @@ Expected<void> IsrTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_regular, nichols::RegularVpls::create());
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
-    BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                            {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}}}));
+    BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
+    BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather",
+                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}},
+                                             m_visibility->defines()}));
     BOUNCE_TRY(m_clusters, gl::Program::build({"isr.clusters", {{GL_COMPUTE_SHADER, "techniques/isr/clusters.comp"}}}));
     m_count = gl::Buffer::create("isr.vplCount", sizeof(uint32_t));
     return {};
@@ -110,22 +117,26 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         }
     }
     m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
+    m_visibility->build(ctx);
     std::vector<double> fragments;
     {
         auto s = ctx.timers.scope("gather");
         vpls->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
-        // One loop iteration per VPL: draws of at most half the shader loop budget (gpu/ShaderLimits.h),
-        // so a million-VPL cache is gathered whole on llvmpipe too.
-        constexpr int kVplsPerDraw = gl::kShaderLoopIterationBudget / 2;
-        const int batches = std::max(1, (m_vplCount + kVplsPerDraw - 1) / kVplsPerDraw);
+        m_visibility->setUniforms(m_gather);
+        // One loop iteration per VPL, plus its visibility test when on: draws of at most half the shader
+        // loop budget (gpu/ShaderLimits.h), so a million-VPL cache is gathered whole on llvmpipe too.
+        const int vplsPerDraw =
+            std::max(1, gl::kShaderLoopIterationBudget / 2 / (1 + m_visibility->loopIterationsPerTest()));
+        const int batches = std::max(1, (m_vplCount + vplsPerDraw - 1) / vplsPerDraw);
         fragments = m_eye->gather(m_gather, batches, [&](int b) {
-            m_gather.set("u_vplFirst", static_cast<unsigned>(b * kVplsPerDraw));
-            m_gather.set("u_vplEnd", static_cast<unsigned>((b + 1) * kVplsPerDraw));
+            m_gather.set("u_vplFirst", static_cast<unsigned>(b * vplsPerDraw));
+            m_gather.set("u_vplEnd", static_cast<unsigned>((b + 1) * vplsPerDraw));
         });
         ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
     m_eye->finish(ctx, indirect, fragments);
+    m_visibility->report(ctx);
     ctx.counters["vpls"] = static_cast<double>(m_vplCount);
 }
 

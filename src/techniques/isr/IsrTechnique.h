@@ -6,6 +6,7 @@
 #include "techniques/Technique.h"
 #include "techniques/nichols/RegularVpls.h"
 #include "techniques/nichols/StencilledGather.h"
+#include "techniques/screen_voxels/VplVisibility.h"
 
 #include <array>
 #include <optional>
@@ -35,6 +36,8 @@ private:
     int m_eyeCoarsest = 16;         // §3.2.4: illumination buffer from 16^2
     nichols::PyramidThresholds m_eyeThresholds{0.1f, 0.3f, false};    // assumptions (thesis gives none)
     nichols::PyramidThresholds m_lightThresholds{0.1f, 0.3f, false};  // assumptions
+    voxels::VplVisibilitySettings m_visibilitySettings;  // beyond the thesis; off by default
+    std::optional<voxels::VplVisibility> m_visibility;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_regular;
     std::optional<nichols::MinMaxPyramid> m_light;

@@ -22,6 +22,9 @@
 // VPLs. VPLs are processed in batches whose worst-case lists fit 64 MiB.
 // Counters: vpls, subsplats (B: entries of the shared list; A: sum over the per-VPL lists), splats
 // (subsplat-VPL pairs drawn), fillFraction = splats / (VPLs x pixels) (R2).
+// With `vplVisibility` on (beyond the thesis, off by default; techniques/screen_voxels/VplVisibility.h) a
+// "voxelize" pass voxelizes the camera's view and every splatted subsplat-VPL pair is multiplied by a
+// voxel march from the subsplat's patch to the VPL (mode A's refinement still sees unoccluded light).
 //
 // Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5); it scales the glossy part too.
 // Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the linear-depth
@@ -87,6 +90,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("curvatureThreshold", m_curvatureThreshold,
             "max curvature kappa = 2 sin(angle / 2) between neighbouring pixels, 0..2 (Fig. 3.10: 0.1, 0.3)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
+    m_visibilitySettings.visit(v);
 }
 
 Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
@@ -96,6 +100,7 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_buffer, nichols::MultiresBuffer::create());
     BOUNCE_TRY(m_glossy, nichols::MultiresBuffer::create());
+    BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
     BOUNCE_TRY(m_glossyCombine, gl::Program::build({"multiresSplat.glossyCombine",
                                                     {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                      {GL_FRAGMENT_SHADER, "techniques/multires_splat/glossy_combine.frag"}}}));
@@ -108,7 +113,8 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
                                              {"g_subsplat"}}));
     BOUNCE_TRY(m_splat, gl::Program::build({"multiresSplat.splat",
                                             {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
-                                             {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}}}));
+                                             {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}},
+                                            m_visibility->defines()}));
     m_feedback = gl::TransformFeedback::create("multiresSplat.feedback");
     m_written = gl::Query::create("multiresSplat.written", GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     return {};
@@ -133,6 +139,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
         auto s = ctx.timers.scope("min-max-mipmap");
         buildEye(ctx);
     }
+    m_visibility->build(ctx);
     const int levels = m_eye->levels();
     BOUNCE_CHECK(levels <= kMaxLevels, "multires-splat supports up to {} levels", kMaxLevels);
     const bool perVpl = m_refinement == "per-vpl";
@@ -232,6 +239,9 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             m_splat.set("u_minDistance2", m_minDistance * m_minDistance);
             m_splat.set("u_perVpl", perVpl ? 1 : 0);
             m_splat.set("u_glossy", glossy ? 1 : 0);
+            // One fragment is one subsplat-VPL pair: a single visibility test per invocation, far within
+            // the shader loop budget, so the splat draw needs no batching for it.
+            m_visibility->setUniforms(m_splat);
             m_eye->geometry().bind(BINDING_TEX_TECH0);
             m_eye->normal().bind(BINDING_TEX_TECH2);
             ctx.gbuffer.bind();
@@ -279,6 +289,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     ctx.counters["subsplats"] = subsplats;
     ctx.counters["splats"] = splats;  // subsplat-VPL pairs drawn
     ctx.counters["fillFraction"] = splats / (static_cast<double>(vplCount) * static_cast<double>(perList));
+    m_visibility->report(ctx);
 }
 
 }  // namespace bounce

@@ -6,6 +6,7 @@
 #include "techniques/Technique.h"
 #include "techniques/nichols/MultiresBuffer.h"
 #include "techniques/nichols/RegularVpls.h"
+#include "techniques/screen_voxels/VplVisibility.h"
 
 #include <array>
 #include <optional>
@@ -46,6 +47,10 @@ private:
     bool m_detailModulation = false;  // Eq. 3.3 (§3.3.3: optional, used with high normal thresholds)
     float m_detailAlpha = 0.5f;       // Fig. 3.9
     nichols::PyramidThresholds m_thresholds{0.1f, 0.3f, false};
+    // Beyond the thesis, off by default: applied per subsplat-VPL pair in the splat pass; mode A's
+    // refinement criterion still evaluates the unoccluded light.
+    voxels::VplVisibilitySettings m_visibilitySettings;
+    std::optional<voxels::VplVisibility> m_visibility;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_vpls;
     std::optional<nichols::MinMaxPyramid> m_eye;

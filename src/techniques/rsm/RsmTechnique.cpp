@@ -12,6 +12,9 @@
 // on llvmpipe that is about twice as fast as indexing the SSBO (docs/techniques/rsm.md).
 // With `glossy` on (bounce's extension, off by default), the GGX lobe of the receiver's BRDF toward
 // the eye is added per VPL: the limit of multires-splat's mode A.
+// With `vplVisibility` on (beyond the thesis, off by default; techniques/screen_voxels/VplVisibility.h) a
+// "voxelize" pass voxelizes the camera's view and each VPL's contribution is multiplied by a voxel
+// march from the pixel to the VPL; the march multiplies a VPL's loop iterations, so batches shrink.
 //
 // Deviations: the thesis's RSM assumes a spot light and equal texel solid angles (Eq. 4.4); here each
 // texel's exact solid angle and the light's actual intensity give the flux in watts, so the
@@ -37,6 +40,7 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("minDistance", m_minDistance, "r clamp of the point form factor, metres (assumption; the thesis gives no value)", 0.0f, 10.0f);
     v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
             "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
+    m_visibilitySettings.visit(v);
     v.field("vplBatch", m_vplBatch, "VPLs per gather draw, rounded down to whole VPL-grid rows (at least one) and capped by the shader loop budget (65535 loop iterations per invocation on llvmpipe); batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
 }
 
@@ -44,8 +48,17 @@ Expected<void> RsmTechnique::setup(const SetupContext&) {
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
-    BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                            {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}}}));
+    BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
+    // A draw sums whole VPL-grid rows; a row whose marches alone pass the shader loop budget would lose
+    // VPLs on llvmpipe (gpu/ShaderLimits.h).
+    if (m_vplGrid * (1 + m_visibility->loopIterationsPerTest()) + 1 > gl::kShaderLoopIterationBudget)
+        return makeError("vplGrid={} with vplVisibility: a grid row of {} VPLs x (1 + {} march iterations) passes the "
+                         "shader loop budget of {}; lower vplGrid, raySteps or voxelBits",
+                         m_vplGrid, m_vplGrid, m_visibility->loopIterationsPerTest(), gl::kShaderLoopIterationBudget);
+    BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather",
+                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}},
+                                             m_visibility->defines()}));
     m_fbo = gl::Framebuffer::create("rsm.fbo");
     return {};
 }
@@ -67,6 +80,7 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         auto s = ctx.timers.scope("vpl-cache");
         m_vpls->extract(*m_rsm, m_vplGrid);
     }
+    m_visibility->build(ctx);
     auto s = ctx.timers.scope("gather");
     m_fbo.bind();
     glViewport(0, 0, ctx.size.x, ctx.size.y);
@@ -80,14 +94,17 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     m_gather.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
     m_gather.set("u_minDistance2", m_minDistance * m_minDistance);
     m_gather.set("u_glossy", m_glossy ? 1 : 0);
+    m_visibility->setUniforms(m_gather);
     gl::Context::current()->bindEmptyVertexArray();
     // A batch is whole rows of the VPL grid (at least one), so the shader walks rows without an integer
     // division per VPL. The first batch writes (also clearing pixels without geometry), the others add.
     const int rows = m_vpls->grid() * m_vpls->layers();
-    // Each row costs grid inner iterations plus one outer: rows stay within the shader loop budget, or
-    // llvmpipe drops the batch's last VPLs (gpu/ShaderLimits.h).
+    // Each row costs grid inner iterations (each with at most one visibility march) plus one outer: rows
+    // stay within the shader loop budget, or llvmpipe drops the batch's last VPLs (gpu/ShaderLimits.h).
     const int grid = m_vpls->grid();
-    const int rowsPerBatch = std::max(1, std::min(m_vplBatch / grid, gl::kShaderLoopIterationBudget / (grid + 1)));
+    const int perVpl = 1 + m_visibility->loopIterationsPerTest();
+    const int rowsPerBatch =
+        std::max(1, std::min(m_vplBatch / grid, gl::kShaderLoopIterationBudget / (grid * perVpl + 1)));
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
@@ -106,6 +123,7 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     ctx.counters["gatherDraws"] = static_cast<double>(draws);
     ctx.counters["vpls"] = static_cast<double>(m_vpls->count());
     ctx.counters["gatherFragments"] = static_cast<double>(ctx.size.x) * ctx.size.y;
+    m_visibility->report(ctx);
 }
 
 }  // namespace bounce

@@ -4,6 +4,7 @@
 // Figs. 4.9/4.13 (rsmSize = 1024) that isr and hisr converge to.
 #include "techniques/Technique.h"
 #include "techniques/nichols/RegularVpls.h"
+#include "techniques/screen_voxels/VplVisibility.h"
 
 #include <array>
 #include <optional>
@@ -33,6 +34,8 @@ private:
     // ShaderLimits.h); 32k VPLs over a 64^2 image take a few seconds on llvmpipe, a GPU milliseconds,
     // well under its ~2 s watchdog. Engineering choice, not from the thesis.
     int m_vplBatch = 32768;
+    voxels::VplVisibilitySettings m_visibilitySettings;  // beyond the thesis; off by default
+    std::optional<voxels::VplVisibility> m_visibility;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_vpls;
     gl::Program m_gather;

@@ -10,6 +10,12 @@
 
 namespace bounce::voxels {
 
+namespace {
+// Smallest depth range of the grid, metres: a scene flat in view depth (one plane facing the camera)
+// would otherwise divide by zero. Engineering choice; any value far below a scene's size works.
+constexpr float kMinDepthRange = 1e-3f;
+}  // namespace
+
 Expected<void> checkGrid(const GridSize& size, std::string_view columnsName, std::string_view bitsName) {
     if (size.columns.x <= 0 || size.columns.y <= 0)
         return makeError("{}={}x{}: the voxel grid needs at least one column", columnsName, size.columns.x, size.columns.y);
@@ -26,6 +32,7 @@ Expected<ScreenVoxels> ScreenVoxels::create() {
     ScreenVoxels v;
     BOUNCE_TRY(v.m_program, gl::Program::build({"screenVoxels.voxelize",
                                                 {{GL_VERTEX_SHADER, "render/scene.vert"},
+                                                 {GL_GEOMETRY_SHADER, "techniques/screen_voxels/voxelize.geom"},
                                                  {GL_FRAGMENT_SHADER, "techniques/screen_voxels/voxelize.frag"}}}));
     v.m_fbo = gl::Framebuffer::create("screenVoxels.fbo");
     v.m_ubo = gl::Buffer::create("screenVoxels.uniforms", sizeof(gpu::ScreenVoxelsGpu));
@@ -61,8 +68,14 @@ void ScreenVoxels::build(render::SceneDrawer& drawer, const render::View& camera
         zMin = std::min(zMin, z);
         zMax = std::max(zMax, z);
     }
-    const float nearZ = std::max(camera.nearPlane, zMin);
-    const float farZ = std::max(std::min(camera.farPlane, zMax), nearZ + 1e-3f);
+    // The bounds' near and far faces sit at the centres of the first and last slices. Spanning exactly
+    // [zMin, zMax] put a surface on a face (a wall perpendicular to the view at the scene's far end) at
+    // slice `bits`, just outside the grid, so it was never voxelized and rays passed through it
+    // (ScreenVoxelsGpuTest.MarchSeesTheVoxelizedOccludersOnly). A scene flat in view depth still gets
+    // a range of kMinDepthRange.
+    const float halfSlice = 0.5f * std::max(zMax - zMin, kMinDepthRange) / static_cast<float>(size.bits - 1);
+    const float nearZ = std::max(camera.nearPlane, zMin - halfSlice);
+    const float farZ = std::max(std::min(camera.farPlane, zMax + halfSlice), nearZ + kMinDepthRange);
     m_uniforms.clipFromWorld = camera.clipFromWorld();
     m_uniforms.viewFromWorld = camera.viewFromWorld;
     m_uniforms.grid = glm::vec4(size.columns.x, size.columns.y, size.bits, layers);

@@ -29,8 +29,9 @@ public:
     static Expected<ScreenVoxels> create();
 
     // Voxelizes the scene as `camera` sees it. The depth range is the scene's bounds at the current
-    // time in view space, clipped to the camera's near and far planes (slices are wasted on nothing
-    // outside the scene; an assumption, the thesis does not say).
+    // time in view space, widened by half a slice each side so the bounds' faces fall on slice centres,
+    // and clipped to the camera's near and far planes (slices are wasted on nothing outside the scene;
+    // an assumption, the thesis does not say).
     void build(render::SceneDrawer& drawer, const render::View& camera, const GridSize& size);
     // Binds the grid (BINDING_UBO_VOXELS, BINDING_TEX_VOXELS) for march.glsl.
     void bind() const;
