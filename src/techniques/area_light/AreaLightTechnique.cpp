@@ -83,6 +83,20 @@ gl::ProgramDesc fullscreen(std::string_view name, std::string_view fragment) {
 
 GLuint groups(int n) { return static_cast<GLuint>((n + kLocalSize - 1) / kLocalSize); }
 
+// A nearest-sampled 2D array texture (per-cell records over the atlas or the frame).
+gl::Texture arrayTexture(std::string_view name, glm::ivec2 size, int layers, GLenum format, int levels = 1) {
+    gl::TextureDesc d;
+    d.target = GL_TEXTURE_2D_ARRAY;
+    d.width = size.x;
+    d.height = size.y;
+    d.depth = layers;
+    d.levels = levels;
+    d.format = format;
+    d.minFilter = levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST;
+    d.magFilter = GL_NEAREST;
+    return gl::Texture::create(name, d);
+}
+
 }  // namespace
 
 void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
@@ -235,15 +249,7 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
 void AreaLightTechnique::buildLobePyramid(FrameContext& ctx) {
     const int levels = m_pyramid->levels();
     if (!m_lobe || m_lobe.width() != m_size.x || m_lobe.height() != m_size.y || m_lobe.desc().levels != levels) {
-        gl::TextureDesc d;
-        d.target = GL_TEXTURE_2D_ARRAY;
-        d.width = m_size.x;
-        d.height = m_size.y;
-        d.levels = levels;
-        d.format = GL_RGBA32F;
-        d.minFilter = GL_NEAREST_MIPMAP_NEAREST;
-        d.magFilter = GL_NEAREST;
-        m_lobe = gl::Texture::create("areaLight.lobePyramid", d);
+        m_lobe = arrayTexture("areaLight.lobePyramid", m_size, 1, GL_RGBA32F, levels);
     }
     ctx.gbuffer.bind();
     for (int k = 0; k < levels; ++k) {
@@ -313,14 +319,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
         m_flags.setFilter(GL_NEAREST, GL_NEAREST);
         m_subsets = gl::Texture::create2D("areaLight.subsets", atlas.x, atlas.y, GL_RGBA32F);
         m_subsets.setFilter(GL_NEAREST, GL_NEAREST);
-        gl::TextureDesc d;
-        d.target = GL_TEXTURE_2D_ARRAY;
-        d.width = atlas.x;
-        d.height = atlas.y;
-        d.depth = m_layers;
-        d.format = GL_RGBA32UI;
-        d.minFilter = d.magFilter = GL_NEAREST;
-        m_bits = gl::Texture::create("areaLight.bitstreams", d);
+        m_bits = arrayTexture("areaLight.bitstreams", atlas, m_layers, GL_RGBA32UI);
     }
     const GLuint zero = 0;
     glClearTexImage(m_flags.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -385,14 +384,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                     // Three RGBA32F layers per light: six queries' (d, d^2) per cell (§5.3.3.3).
                     const int layers = 3 * static_cast<int>(m_lightIndices.size());
                     if (!m_momentsTexture || m_momentsTexture.width() != atlas.x || m_momentsTexture.height() != atlas.y) {
-                        gl::TextureDesc d;
-                        d.target = GL_TEXTURE_2D_ARRAY;
-                        d.width = atlas.x;
-                        d.height = atlas.y;
-                        d.depth = layers;
-                        d.format = GL_RGBA32F;
-                        d.minFilter = d.magFilter = GL_NEAREST;
-                        m_momentsTexture = gl::Texture::create("areaLight.varianceMoments", d);
+                        m_momentsTexture = arrayTexture("areaLight.varianceMoments", atlas, layers, GL_RGBA32F);
                     }
                     m_momentsTexture.bindImage(BINDING_IMG0, GL_READ_WRITE, 0, true);
                     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
