@@ -132,8 +132,9 @@ TEST_F(PipelineGpuTest, EveryTechniqueRendersEveryBuiltinSceneWithFiniteOutput) 
             const bool areaLightRefuses = !onlyAreaLights || scene->lights.empty() || scene->hasEmissiveMaterials();
             if ((radiosity && !onlyAreaLights) || (areaLight && areaLightRefuses)) {
                 ASSERT_FALSE(created.ok()) << t.name << " on " << info.name;
-                if (radiosity || !onlyAreaLights)
+                if (radiosity || !onlyAreaLights) {
                     EXPECT_NE(created.error().message.find("light '"), std::string::npos) << created.error().message;
+                }
                 EXPECT_EQ(created.error().message.find('\n'), std::string::npos) << created.error().message;
                 continue;
             }
