@@ -25,11 +25,6 @@ public:
 
     static constexpr std::array<std::string_view, 4> kVisibilityModes{"incremental", "brute", "none", "shadow-maps"};
 
-    // For tests: the multiresolution buffers of the last frame.
-    const nichols::MultiresBuffer& diffuseBuffer() const { return *m_diffuse; }
-    const nichols::MinMaxPyramid& eyePyramid() const { return *m_pyramid; }
-    const voxels::ScreenVoxels& voxelGrid() const { return *m_voxels; }
-    int vplCount() const { return m_vplCount; }
 
 private:
     struct PassCounts {
