@@ -13,3 +13,11 @@ vec3 materialAlbedo(uint material, vec2 uv) {
     if (m.baseColor.a >= 0.0) albedo *= texture(s_baseColor, vec3(uv, m.baseColor.a)).rgb;
     return albedo;
 }
+
+// Emitted radiance: emission times the emission texture (a layer of the same array), if any.
+vec3 materialEmission(uint material, vec2 uv) {
+    MaterialGpu m = u_materials[material];
+    vec3 emission = m.emission.rgb;
+    if (m.emission.a >= 0.0) emission *= texture(s_baseColor, vec3(uv, m.emission.a)).rgb;
+    return emission;
+}

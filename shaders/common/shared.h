@@ -22,7 +22,7 @@ struct ObjectGpu {
 
 struct MaterialGpu {
     vec4 baseColor;  // rgb: albedo, a: texture layer in the base-colour array, or -1
-    vec4 emission;   // rgb: emitted radiance W/(m^2 sr)
+    vec4 emission;   // rgb: emitted radiance W/(m^2 sr); a: its texture's layer in the same array, or -1
     vec4 params;     // x: roughness, y: metallic, z: specularF0, w: 1 if two-sided
 };
 

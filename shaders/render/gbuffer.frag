@@ -23,7 +23,7 @@ void main() {
     bool twoSided = m.params.w > 0.5;
     bool back = !gl_FrontFacing;
     vec3 albedo = materialAlbedo(material, v_uv);
-    vec3 emission = m.emission.rgb;
+    vec3 emission = materialEmission(material, v_uv);
     if (back) {
         if (!twoSided) discard;
         n = -n;

@@ -139,7 +139,8 @@ Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOp
                 g.normals.push_back(len > 0.0f ? w / len : glm::vec3(0.0f));
             }
         }
-        if (hasUvs && scene.materials[object.material].baseColorTexture >= 0) g.uvs = mesh.uvs;
+        const Material& material = scene.materials[object.material];
+        if (hasUvs && (material.baseColorTexture >= 0 || material.emissionTexture >= 0)) g.uvs = mesh.uvs;
         g.triangles.resize(mesh.triangleCount());
         std::memcpy(g.triangles.data(), mesh.indices.data(), g.triangles.size() * sizeof(glm::uvec3));
         computeFaceData(g);

@@ -67,7 +67,8 @@ struct SceneGeometry {
     bool twoSided = false;
     // World space at the build time. normals is empty when the mesh has none or when every vertex
     // normal equals its face normal (flat shading, e.g. boxes): faceNormals are used then. uvs is
-    // empty when the mesh has none or its material has no texture (nothing reads them).
+    // empty when the mesh has none or its material has no texture, base colour or emission (nothing
+    // reads them then).
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;

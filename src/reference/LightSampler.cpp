@@ -69,6 +69,15 @@ LightSampler::LightSampler(const Scene& scene, const EmbreeScene& embree) {
             e.normal = g.faceNormals[t];
             e.emitted = material.emission;
             e.area = g.areas[t];
+            if (material.emissionTexture >= 0) {
+                // A mesh without uvs reads the texel at (0, 0) everywhere, as its hits do (and the GPU).
+                e.emissionTexture = &scene.textures[static_cast<size_t>(material.emissionTexture)].image;
+                if (!g.uvs.empty()) {
+                    e.uv0 = g.uvs[tri.x];
+                    e.uv1 = g.uvs[tri.y] - g.uvs[tri.x];
+                    e.uv2 = g.uvs[tri.z] - g.uvs[tri.x];
+                }
+            }
             add(e, sides * kPi * radianceLum * e.area);
         }
     }

@@ -13,6 +13,7 @@
 #include "reference/EmbreeScene.h"
 #include "reference/EmitterTexture.h"
 #include "reference/Sampling.h"
+#include "reference/TextureLookup.h"
 #include "scene/Scene.h"
 
 #include <algorithm>
@@ -48,6 +49,10 @@ public:
         float exponent = 1.0f;   // spot
         float pmf = 0.0f;        // probability of being chosen
         const EmitterTexture* texture = nullptr;  // area: emission multiplier and its distribution, or null
+        // Triangle of a material with an emission texture: the texture (bilinear, repeating) and the uvs
+        // at `position` and along the edges; the point at barycentrics (b1, b2) has uv uv0 + b1 uv1 + b2 uv2.
+        const Image* emissionTexture = nullptr;
+        glm::vec2 uv0{0.0f}, uv1{0.0f}, uv2{0.0f};
     };
     struct AliasSlot {
         float threshold = 1.0f;  // keep the slot's own entry below this, else take `alias`
@@ -73,9 +78,10 @@ public:
     float pdfEmitterHit(uint32_t geomId, uint32_t primId, float u, float v, float distance, float cosLight) const noexcept;
     // The emission texture of Embree geometry geomId (a textured area light's rectangle), or null.
     const EmitterTexture* texture(uint32_t geomId) const noexcept { return m_textureOfGeometry[geomId]; }
-    // For the vectorised kernel, which samples rectangles uniformly in (u1, u2): remaps the numbers of a
-    // textured rectangle to the texel-distributed point and returns the entry's emitted radiance and pmf
-    // at it, the same numbers sample() uses.
+    // For the vectorised kernel, which samples rectangles uniformly in (u1, u2) and triangles by
+    // uniformTriangle(u1, u2): remaps the numbers of a textured rectangle to the texel-distributed point,
+    // and returns the entry's emitted radiance and pmf at the point, the same numbers sample() uses (a
+    // triangle with an emission texture: the texel there, pmf unchanged).
     static void textureSample(const Entry& e, float& u1, float& u2, glm::vec3& emitted, float& pmf) noexcept;
 
     // The entry sample() picks for uSelect.
@@ -103,6 +109,13 @@ private:
 inline void LightSampler::textureSample(const Entry& e, float& u1, float& u2, glm::vec3& emitted, float& pmf) noexcept {
     emitted = e.emitted;
     pmf = e.pmf;
+    if (e.emissionTexture) {
+        // Points on an emissive triangle stay uniform by area (the choice ignores the texture: unbiased,
+        // if noisier where the texture is dark); only the radiance there changes.
+        const glm::vec2 b = uniformTriangle(u1, u2);
+        emitted = e.emitted * lookupBilinearRepeat(*e.emissionTexture, e.uv0 + b.x * e.uv1 + b.y * e.uv2);
+        return;
+    }
     if (!e.texture) return;
     const EmitterTexture::Sample s = e.texture->sample(u1, u2);
     // The rectangle's corner is (u, v) = (0, 0) and its edges are edgeU, edgeV (EmbreeScene's layout).
@@ -156,8 +169,8 @@ inline bool LightSampler::sample(glm::vec3 p, float uSelect, float u1, float u2,
             glm::vec3 y;
             glm::vec3 emitted = e.emitted;
             float pdfChoice = pmf;  // pmf, times the texel's density on a textured rectangle
+            textureSample(e, u1, u2, emitted, pdfChoice);
             if (e.kind == Kind::Area) {
-                textureSample(e, u1, u2, emitted, pdfChoice);
                 y = e.position + u1 * e.edge1 + u2 * e.edge2;
             } else {
                 const glm::vec2 b = uniformTriangle(u1, u2);

@@ -114,15 +114,16 @@ Expected<PathTracer> PathTracer::create(const Scene& scene, const PathTracerSett
     if (settings.threads < 0) return makeError("threads {}: must be 0 (all) or more", settings.threads);
     if (!(settings.timeLimitSeconds >= 0.0) || !std::isfinite(settings.timeLimitSeconds))
         return makeError("time limit {}: must be a finite number of seconds >= 0", settings.timeLimitSeconds);
-    for (const Material& m : scene.materials) {
-        if (m.baseColorTexture < 0) continue;
-        if (static_cast<size_t>(m.baseColorTexture) >= scene.textures.size())
-            return makeError("material '{}': texture index {} out of range ({} textures)", m.name, m.baseColorTexture,
-                             scene.textures.size());
-        const TextureImage& t = scene.textures[static_cast<size_t>(m.baseColorTexture)];
-        if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
-        BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
-    }
+    for (const Material& m : scene.materials)
+        for (const int index : {m.baseColorTexture, m.emissionTexture}) {
+            if (index < 0) continue;
+            if (static_cast<size_t>(index) >= scene.textures.size())
+                return makeError("material '{}': texture index {} out of range ({} textures)", m.name, index,
+                                 scene.textures.size());
+            const TextureImage& t = scene.textures[static_cast<size_t>(index)];
+            if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
+            BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
+        }
 
     for (const Light& light : scene.lights)
         BOUNCE_TRY_VOID(checkAreaTexture(scene, light, "light '" + light.name + "'"));
@@ -164,6 +165,7 @@ std::vector<PathTracer::Shading> PathTracer::gatherShading(const Scene& scene, c
             const Material& m = scene.materials[g.materialIndex];
             s.material = &m;
             if (m.baseColorTexture >= 0) s.texture = &scene.textures[static_cast<size_t>(m.baseColorTexture)].image;
+            if (m.emissionTexture >= 0) s.emissionTexture = &scene.textures[static_cast<size_t>(m.emissionTexture)].image;
             s.emitted = m.emission;
             s.twoSided = m.twoSided;
             s.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
@@ -202,7 +204,8 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
             k.emitterPerTriangle = k.emitter && k.emitter->kind == LightSampler::Kind::Triangle;
         }
         // Textured emitters vary over their rectangle: their hits go through scatter().
-        k.shades = sh.texture == nullptr && sh.emitterTexture == nullptr && (sh.lambertian || sh.absorber);
+        k.shades = sh.texture == nullptr && sh.emitterTexture == nullptr && sh.emissionTexture == nullptr &&
+                   (sh.lambertian || sh.absorber);
         k.shadesDiffuseOnly = sh.texture == nullptr && m_settings.diffuseOnly;
         k.emissive = sh.emissive;
         k.twoSided = sh.twoSided;
@@ -233,7 +236,7 @@ PathTracer::Step PathTracer::scatter(PathState& path, const HitRecord& hit, Shad
             const float lightPdf = m_lights.pdfEmitterHit(hit.geomId, hit.primId, hit.u, hit.v, hit.t, std::abs(cosIn));
             weight = powerHeuristic(path.bsdfPdf, lightPdf);
         }
-        path.radiance += path.throughput * emittedAt(sh, hit.primId, hit.u, hit.v) * weight;
+        path.radiance += path.throughput * emittedAt(sh, hit.primId, hit.u, hit.v, sp.uv) * weight;
     }
     if (sh.absorber || !(front || sh.twoSided)) return Step::Stop;
     if (path.reflections >= m_maxReflections) return Step::Stop;

@@ -22,6 +22,7 @@
 #include "reference/LambertKernel.h"
 #include "reference/LightSampler.h"
 #include "reference/Rng.h"
+#include "reference/TextureLookup.h"
 #include "scene/Scene.h"
 
 #include <array>
@@ -105,6 +106,8 @@ public:
         glm::vec3 emitted{0.0f};             // radiance of the front side (both sides if twoSided)
         // Textured area lights: the radiance seen at a hit is emitted times this texture's texel there.
         const EmitterTexture* emitterTexture = nullptr;
+        // Materials with an emission texture: emitted times its bilinear texel at the hit's uv.
+        const Image* emissionTexture = nullptr;
         glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
         bool emissive = false;
         bool twoSided = false;
@@ -117,9 +120,11 @@ public:
     // the scene the same way.
     static std::vector<Shading> gatherShading(const Scene& scene, const EmbreeScene& embree,
                                               const LightSampler& lights, float time);
-    // The radiance a ray sees on an emitting geometry at Embree barycentrics (u, v) of triangle primId:
-    // the shading's emitted radiance, times the texel there on a textured area light.
-    static glm::vec3 emittedAt(const Shading& shading, uint32_t primId, float u, float v) noexcept {
+    // The radiance a ray sees on an emitting geometry at Embree barycentrics (u, v) of triangle primId
+    // (surface uv `uv`): the shading's emitted radiance, times the texel there on a textured area light
+    // or a material with an emission texture.
+    static glm::vec3 emittedAt(const Shading& shading, uint32_t primId, float u, float v, glm::vec2 uv) noexcept {
+        if (shading.emissionTexture) return shading.emitted * lookupBilinearRepeat(*shading.emissionTexture, uv);
         if (!shading.emitterTexture) return shading.emitted;
         const EmitterTexture& t = *shading.emitterTexture;
         return shading.emitted * t.texel(t.texelAt(areaLightUv(primId, u, v)));

@@ -289,6 +289,8 @@ struct PhotonMapper::Impl {
                 } else {
                     const glm::vec2 b = uniformTriangle(u1, u2);
                     y = e.position + b.x * e.edge1 + b.y * e.edge2;
+                    // An emission texture: uniform points by area, each carrying its texel's radiance.
+                    if (e.emissionTexture) power *= lookupBilinearRepeat(*e.emissionTexture, e.uv0 + b.x * e.uv1 + b.y * e.uv2);
                 }
                 glm::vec3 n = e.normal;
                 if (e.twoSided && rng.next() < 0.5f) n = -n;
@@ -361,7 +363,7 @@ struct PhotonMapper::Impl {
                 continue;
             }
             glm::vec3 radiance(0.0f);
-            if (sh.emissive && !settings.indirectOnly) radiance += PathTracer::emittedAt(sh, hit.primId, hit.u, hit.v);  // k = 0
+            if (sh.emissive && !settings.indirectOnly) radiance += PathTracer::emittedAt(sh, hit.primId, hit.u, hit.v, sp.uv);  // k = 0
             if (sh.absorber) return radiance;
             const glm::vec3 ng = front ? sp.geometricNormal : -sp.geometricNormal;
             map.gather(sp.position, ng, PhotonGatherParams{settings.k, settings.maxRadius, true}, g, indices, dist2);
@@ -405,15 +407,16 @@ Expected<PhotonMapper> PhotonMapper::create(const Scene& scene, const PhotonMapS
     if (settings.threads < 0) return makeError("threads {}: must be 0 (all) or more", settings.threads);
     if (!(settings.timeLimitSeconds >= 0.0) || !std::isfinite(settings.timeLimitSeconds))
         return makeError("time limit {}: must be a finite number of seconds >= 0", settings.timeLimitSeconds);
-    for (const Material& m : scene.materials) {
-        if (m.baseColorTexture < 0) continue;
-        if (static_cast<size_t>(m.baseColorTexture) >= scene.textures.size())
-            return makeError("material '{}': texture index {} out of range ({} textures)", m.name, m.baseColorTexture,
-                             scene.textures.size());
-        const TextureImage& t = scene.textures[static_cast<size_t>(m.baseColorTexture)];
-        if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
-        BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
-    }
+    for (const Material& m : scene.materials)
+        for (const int index : {m.baseColorTexture, m.emissionTexture}) {
+            if (index < 0) continue;
+            if (static_cast<size_t>(index) >= scene.textures.size())
+                return makeError("material '{}': texture index {} out of range ({} textures)", m.name, index,
+                                 scene.textures.size());
+            const TextureImage& t = scene.textures[static_cast<size_t>(index)];
+            if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
+            BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
+        }
     for (const Light& light : scene.lights)
         BOUNCE_TRY_VOID(checkAreaTexture(scene, light, "light '" + light.name + "'"));
     EmbreeSceneOptions options;

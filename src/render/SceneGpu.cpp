@@ -104,41 +104,55 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
     glVertexArrayAttribIFormat(vao, ATTR_OBJECT_INDEX, 1, GL_UNSIGNED_INT, 0);
     glVertexArrayAttribBinding(vao, ATTR_OBJECT_INDEX, 1);
 
-    // Materials and the texture array.
+    // Materials and the texture array. Only textures a material uses are layers (in order of first
+    // use): area lights' emission images live in Scene::textures too, but LightSet uploads them itself,
+    // and a long video sequence must neither fill the array nor force every material texture to be
+    // resampled to its size.
+    std::vector<int> layerOf(scene.textures.size(), -1);
+    std::vector<size_t> layers;  // texture index of each layer
+    const auto useTexture = [&](int index) {
+        if (index < 0) return -1.0f;
+        if (layerOf[static_cast<size_t>(index)] < 0) {
+            layerOf[static_cast<size_t>(index)] = static_cast<int>(layers.size());
+            layers.push_back(static_cast<size_t>(index));
+        }
+        return static_cast<float>(layerOf[static_cast<size_t>(index)]);
+    };
+    std::vector<gpu::MaterialGpu> materials;
+    for (const Material& m : scene.materials) {
+        gpu::MaterialGpu g;
+        g.baseColor = glm::vec4(m.baseColor, useTexture(m.baseColorTexture));
+        g.emission = glm::vec4(m.emission, useTexture(m.emissionTexture));
+        g.params = glm::vec4(m.roughness, m.metallic, m.specularF0, m.twoSided ? 1.0f : 0.0f);
+        materials.push_back(g);
+    }
     int texW = 1, texH = 1;
-    for (const TextureImage& t : scene.textures) {
-        texW = std::max(texW, std::min(t.image.width(), kMaxTextureSize));
-        texH = std::max(texH, std::min(t.image.height(), kMaxTextureSize));
+    for (size_t index : layers) {
+        const Image& image = scene.textures[index].image;
+        texW = std::max(texW, std::min(image.width(), kMaxTextureSize));
+        texH = std::max(texH, std::min(image.height(), kMaxTextureSize));
     }
     gl::TextureDesc td;
     td.target = GL_TEXTURE_2D_ARRAY;
     td.format = GL_RGBA16F;
     td.width = texW;
     td.height = texH;
-    td.depth = std::max<int>(1, static_cast<int>(scene.textures.size()));
+    td.depth = std::max<int>(1, static_cast<int>(layers.size()));
     td.wrap = GL_REPEAT;
-    m_textures = gl::Texture::create("scene.baseColorTextures", td);
-    for (size_t layer = 0; layer < scene.textures.size(); ++layer) {
-        const Image& src = scene.textures[layer].image;
+    m_textures = gl::Texture::create("scene.materialTextures", td);
+    for (size_t layer = 0; layer < layers.size(); ++layer) {
+        const TextureImage& texture = scene.textures[layers[layer]];
+        const Image& src = texture.image;
         std::vector<float> rgb(static_cast<size_t>(texW) * texH * 3);
         if (src.width() == texW && src.height() == texH) {
             std::memcpy(rgb.data(), src.data(), rgb.size() * sizeof(float));
         } else {
-            spdlog::debug("texture '{}' resampled {}x{} -> {}x{}", scene.textures[layer].name, src.width(), src.height(),
-                          texW, texH);
+            spdlog::debug("texture '{}' resampled {}x{} -> {}x{}", texture.name, src.width(), src.height(), texW, texH);
             stbir_resize_float(reinterpret_cast<const float*>(src.data()), src.width(), src.height(), 0, rgb.data(),
                                texW, texH, 0, 3);
         }
         glTextureSubImage3D(m_textures.id(), 0, 0, 0, static_cast<GLint>(layer), texW, texH, 1, GL_RGB, GL_FLOAT,
                             rgb.data());
-    }
-    std::vector<gpu::MaterialGpu> materials;
-    for (const Material& m : scene.materials) {
-        gpu::MaterialGpu g;
-        g.baseColor = glm::vec4(m.baseColor, m.baseColorTexture >= 0 ? static_cast<float>(m.baseColorTexture) : -1.0f);
-        g.emission = glm::vec4(m.emission, 0.0f);
-        g.params = glm::vec4(m.roughness, m.metallic, m.specularF0, m.twoSided ? 1.0f : 0.0f);
-        materials.push_back(g);
     }
     if (materials.empty()) materials.emplace_back();
     m_materials = gl::Buffer::create("scene.materials", materials.size() * sizeof(gpu::MaterialGpu), materials.data(), 0);

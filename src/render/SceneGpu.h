@@ -1,6 +1,6 @@
 #pragma once
 // The scene uploaded once: one vertex and one index buffer for all meshes, per-object and
-// per-material storage buffers, all base-colour textures in one array texture, and indirect draw
+// per-material storage buffers, the materials' textures (base colour and emission) in one array texture, and indirect draw
 // commands for every object, the static ones and the dynamic ones. Per frame only the dynamic
 // objects' transforms and the lights change (update()).
 #include "common/shared.h"
@@ -38,6 +38,8 @@ public:
     // that pull vertices themselves.
     const gl::Buffer& vertices() const { return m_vertices; }
     const gl::Buffer& materials() const { return m_materials; }
+    // The material texture array: its layers are the ones MaterialGpu::baseColor.a and emission.a name
+    // (materials' textures only, not Scene::textures indices).
     const gl::Texture& baseColorTextures() const { return m_textures; }
 
 private:

@@ -245,7 +245,8 @@ private:
         const std::string what = fmt::format("material '{}'", name);
         BOUNCE_TRY_VOID(expectObject(j, p, what));
         BOUNCE_TRY_VOID(checkKeys(j, p, what,
-                                  {"baseColor", "baseColorTexture", "emission", "roughness", "metallic", "specularF0", "twoSided"}));
+                                  {"baseColor", "baseColorTexture", "emission", "emissionTexture", "roughness", "metallic",
+                                   "specularF0", "twoSided"}));
         Material m;
         m.name = name;
         if (j.contains("baseColor")) {
@@ -267,19 +268,27 @@ private:
             BOUNCE_TRY(m.twoSided, boolean(j["twoSided"], p + "/twoSided"));
         }
         if (j.contains("baseColorTexture")) {
-            BOUNCE_TRY(const std::string rel, text(j["baseColorTexture"], p + "/baseColorTexture"));
-            const fs::path file = m_path.parent_path() / rel;
-            Expected<Image> image = fs::exists(file) ? readImage(file)
-                                                     : Expected<Image>(makeError("{}: file not found", file.string()));
-            if (image.ok()) {
-                m.baseColorTexture = static_cast<int>(m_scene.textures.size());
-                m_scene.textures.push_back({file.string(), std::move(image.value())});
-            } else {
-                spdlog::warn("{}: {}: texture unusable, using the base colour: {}", origin(p + "/baseColorTexture"),
-                             what, image.error().message);
-            }
+            BOUNCE_TRY(m.baseColorTexture, materialTexture(j["baseColorTexture"], p + "/baseColorTexture", what, "base colour"));
+        }
+        if (j.contains("emissionTexture")) {
+            BOUNCE_TRY(m.emissionTexture, materialTexture(j["emissionTexture"], p + "/emissionTexture", what, "emission"));
         }
         return m;
+    }
+
+    // A material's texture file: its index in Scene::textures, or -1 with a warning when it is missing
+    // or unreadable (the material then keeps its `fallback` value alone).
+    Expected<int> materialTexture(const json& j, const std::string& p, const std::string& what, const char* fallback) {
+        BOUNCE_TRY(const std::string rel, text(j, p));
+        const fs::path file = m_path.parent_path() / rel;
+        Expected<Image> image = fs::exists(file) ? readImage(file)
+                                                 : Expected<Image>(makeError("{}: file not found", file.string()));
+        if (!image.ok()) {
+            spdlog::warn("{}: {}: texture unusable, using the {}: {}", origin(p), what, fallback, image.error().message);
+            return -1;
+        }
+        m_scene.textures.push_back({file.string(), std::move(image.value())});
+        return static_cast<int>(m_scene.textures.size() - 1);
     }
 
     Expected<void> objects(const json& j, const std::string& p) {

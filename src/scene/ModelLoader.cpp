@@ -202,12 +202,15 @@ private:
         aiString texPath;
         if (am->GetTexture(aiTextureType_BASE_COLOR, 0, &texPath) == AI_SUCCESS ||
             am->GetTexture(aiTextureType_DIFFUSE, 0, &texPath) == AI_SUCCESS)
-            m.baseColorTexture = texture(texPath.C_Str(), m.name);
+            m.baseColorTexture = texture(texPath.C_Str(), m.name, "base colour");
+        // glTF's emissiveTexture (sRGB, multiplied by emissiveFactor) and MTL's map_Ke.
+        if (am->GetTexture(aiTextureType_EMISSIVE, 0, &texPath) == AI_SUCCESS)
+            m.emissionTexture = texture(texPath.C_Str(), m.name, "emission factor");
         return m;
     }
 
     // Index of the texture in the scene, or -1 (with a warning) when it cannot be read.
-    int texture(const std::string& ref, const std::string& materialName) {
+    int texture(const std::string& ref, const std::string& materialName, const char* fallback) {
         const auto cached = m_textures.find(ref);
         if (cached != m_textures.end()) return cached->second;
         Expected<Image> image = Error{};
@@ -227,7 +230,7 @@ private:
             index = static_cast<int>(m_scene.textures.size());
             m_scene.textures.push_back({name, std::move(image.value())});
         } else {
-            spdlog::warn("{}: material '{}': texture unusable, using the base colour: {}", where(), materialName,
+            spdlog::warn("{}: material '{}': texture unusable, using the {}: {}", where(), materialName, fallback,
                          image.error().message);
         }
         m_textures[ref] = index;

@@ -47,6 +47,7 @@ struct Material {
     glm::vec3 baseColor{0.8f};       // albedo of the diffuse lobe (linear RGB, in [0,1])
     int baseColorTexture = -1;       // index into Scene::textures, multiplied with baseColor
     glm::vec3 emission{0.0f};        // emitted radiance, W/(m^2 sr)
+    int emissionTexture = -1;        // index into Scene::textures, multiplied with emission (linear RGB)
     float roughness = 1.0f;          // perceptual roughness; GGX alpha = roughness^2
     float metallic = 0.0f;
     float specularF0 = 0.0f;         // dielectric reflectance at normal incidence (0 = pure Lambert)

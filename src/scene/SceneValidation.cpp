@@ -204,6 +204,9 @@ Expected<void> finalizeScene(Scene& scene) {
         if (m.baseColorTexture < -1 || m.baseColorTexture >= static_cast<int>(scene.textures.size()))
             return makeError("{}: texture index {} out of range ({} textures)", where, m.baseColorTexture,
                              scene.textures.size());
+        if (m.emissionTexture < -1 || m.emissionTexture >= static_cast<int>(scene.textures.size()))
+            return makeError("{}: emission texture index {} out of range ({} textures)", where, m.emissionTexture,
+                             scene.textures.size());
     }
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         Mesh& mesh = scene.meshes[i];

@@ -146,3 +146,38 @@ TEST_F(DirectLightingGpuTest, AreaLightMatchesRectangleFormFactor) {
         }
     EXPECT_GT(checked, 100);
 }
+
+// An emissive material's emission texture (docs/scene.md "Materials"): the G-buffer shows emission times
+// the texel, bilinear. A black plane (albedo 0: nothing reflected) emitting 2 W/(m^2 sr) times a 2 x 1
+// texture (0.2, 1.0) with u running along +x; between the texel centres (u = 1/4, 3/4) the lookup is
+// linear in u, so a pixel shows the value at its centre. The 1e-2 covers RGBA16F storage (1e-3
+// relative) and llvmpipe's 8-bit filtering weights (0.8 / 256 of the 0.2..1 step, times 2).
+TEST_F(DirectLightingGpuTest, EmissionTextureIsShownTimesTheEmission) {
+    Light light;
+    light.type = LightType::Directional;
+    light.direction = {0.0f, -1.0f, 0.0f};
+    light.irradiance = glm::vec3(1.0f);
+    Scene scene = planeScene(light);
+    Mesh& plane = scene.meshes[0];
+    for (const glm::vec3& p : plane.positions) plane.uvs.push_back({(p.x + kPlaneHalf) / (2.0f * kPlaneHalf), 0.5f});
+    Image texture(2, 1);
+    texture.at(0, 0) = glm::vec3(0.2f);
+    texture.at(1, 0) = glm::vec3(1.0f);
+    scene.textures.push_back({"ramp", texture});
+    scene.materials[0].baseColor = glm::vec3(0.0f);
+    scene.materials[0].emission = glm::vec3(2.0f);
+    scene.materials[0].emissionTexture = 0;
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    constexpr int size = 64;
+    const Image image = renderDirect(scene, size);
+    int checked = 0;
+    for (int x = 0; x < size; ++x) {
+        const float u = (static_cast<float>(x) + 0.5f) / static_cast<float>(size);
+        if (u < 0.25f || u > 0.75f) continue;
+        const float t = (u - 0.25f) / 0.5f;
+        const float expected = 2.0f * (0.2f * (1.0f - t) + 1.0f * t);
+        EXPECT_NEAR(image.at(x, size / 2).g, expected, 1e-2f) << "column " << x;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 32);
+}

@@ -117,6 +117,13 @@ TEST(PhotonMapPower, FirstHitsSumToTheLightFlux) {
         cases.push_back({"textured two-sided area", s, 2.0 * kPi * 5.0 * area.area() * (4.25 / 8.0)});
     }
     {
+        // The same walls with a uniform emission texture of 1/2: every photon carries half the power.
+        Scene s = testscenes::furnaceRoom(0.5f, 0.25f);
+        s.textures.push_back({"half", Image(2, 2, glm::vec3(0.5f))});
+        s.materials[0].emissionTexture = 0;
+        cases.push_back({"emission-textured", s, kPi * 0.25 * 24.0 * 0.5});
+    }
+    {
         // Emissive walls (the light list's triangles): 24 m^2 emitting Le = 0.25 inwards.
         Scene s = testscenes::furnaceRoom(0.5f, 0.25f);
         cases.push_back({"emissive", s, kPi * 0.25 * 24.0});

@@ -88,6 +88,12 @@ const Object* findObject(const Scene& s, const std::string& name) {
     return nullptr;
 }
 
+const Material* findMaterial(const Scene& s, const std::string& name) {
+    for (const Material& m : s.materials)
+        if (m.name == name) return &m;
+    return nullptr;
+}
+
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // A textured quad: 2x2 texture, top-left texel red.
@@ -138,6 +144,20 @@ TEST(ModelLoader, ObjWithMtlAndTexture) {
     ASSERT_EQ(scene->lights.size(), 1u);
     EXPECT_EQ(scene->lights[0].type, LightType::Directional);
     EXPECT_GT(scene->camera.position.z, 1.0f);
+}
+
+// MTL's Ke and map_Ke become the emission and its texture (docs/scene.md "OBJ/MTL"); the same image as
+// map_Kd is loaded once.
+TEST(ModelLoader, ObjEmissionTexture) {
+    writeTexturedObj("glowing", "glow.png", true);
+    writeFile("glowing.mtl", "newmtl painted\nKd 0.5 0.6 0.7\nKe 2 3 4\nmap_Kd glow.png\nmap_Ke glow.png\n");
+    Expected<Scene> scene = loadScene((tempDir() / "glowing.obj").string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Material& m = scene->materials[scene->objects[0].material];
+    EXPECT_NEAR(m.emission.b, 4.0f, 1e-6f);
+    ASSERT_GE(m.emissionTexture, 0);
+    EXPECT_EQ(m.emissionTexture, m.baseColorTexture);
+    EXPECT_EQ(scene->textures.size(), 1u);
 }
 
 TEST(ModelLoader, MissingTextureWarnsAndFallsBackToBaseColour) {
@@ -201,7 +221,8 @@ TEST(ModelLoader, GltfWithLightsCameraAndEmbeddedTexture) {
   "meshes": [{"name": "triMesh", "primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
   "materials": [{"name": "paint", "doubleSided": true, "emissiveFactor": [0.1, 0.2, 0.3],
     "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1], "metallicFactor": 0.3, "roughnessFactor": 0.7,
-                             "baseColorTexture": {"index": 0}}}],
+                             "baseColorTexture": {"index": 0}},
+    "emissiveTexture": {"index": 0}}],
   "textures": [{"source": 0}],
   "images": [{"uri": "data:image/png;base64,)" + base64(readBytes(png)) + R"("}],
   "buffers": [{"byteLength": )" + std::to_string(buffer.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
@@ -231,6 +252,7 @@ TEST(ModelLoader, GltfWithLightsCameraAndEmbeddedTexture) {
     ASSERT_GE(m.baseColorTexture, 0);
     // 0.5 linear -> 8-bit sRGB 188 -> 0.5029 linear: within one 8-bit step.
     EXPECT_NEAR(scene->textures[static_cast<size_t>(m.baseColorTexture)].image.at(0, 0).r, 0.5f, 0.005f);
+    EXPECT_EQ(m.emissionTexture, m.baseColorTexture) << "glTF emissiveTexture: the same image, loaded once";
 
     ASSERT_EQ(scene->lights.size(), 3u);
     const Light* bulb = nullptr;
@@ -709,6 +731,22 @@ TEST(JsonScene, MissingFilesAndReferences) {
     ASSERT_TRUE(textured.ok()) << textured.error().message;
     EXPECT_EQ(textured->materials[0].baseColorTexture, -1);
     EXPECT_TRUE(contains(log.text(), "wood.png")) << log.text();
+
+    // An emission texture loads like a base-colour texture; missing, it is a warning too.
+    ASSERT_TRUE(writeImage(tempDir() / "refs/glow.exr", Image(2, 1, glm::vec3(0.5f))).ok());
+    const fs::path e = writeFile("refs/emission.json", "{\n  \"materials\": {\"lamp\": {\"emission\": 2, \"emissionTexture\": \"glow.exr\"},\n"
+                                                       "    \"dud\": {\"emission\": 2, \"emissionTexture\": \"none.png\"}},\n"
+                                                       "  \"objects\": [{\"model\": \"models/cube.obj\", \"material\": \"lamp\"}],\n"
+                                                       "  \"camera\": {\"position\": [0, 0, 5], \"target\": [0, 0, 0]}\n}\n");
+    Expected<Scene> glowing = loadScene(e.string());
+    ASSERT_TRUE(glowing.ok()) << glowing.error().message;
+    const Material* lamp = findMaterial(*glowing, "lamp");
+    const Material* dud = findMaterial(*glowing, "dud");
+    ASSERT_TRUE(lamp && dud);
+    ASSERT_GE(lamp->emissionTexture, 0);
+    EXPECT_EQ(glowing->textures[static_cast<size_t>(lamp->emissionTexture)].image.at(1, 0), glm::vec3(0.5f));
+    EXPECT_EQ(dud->emissionTexture, -1);
+    EXPECT_TRUE(contains(log.text(), "none.png")) << log.text();
 }
 
 TEST(JsonScene, AreaLightTexturesAndTwoSided) {

@@ -1,6 +1,7 @@
 #include "techniques/radiosity/PatchModel.h"
 
 #include "core/Check.h"
+#include "scene/AreaTexture.h"
 #include "techniques/radiosity/radiosity_shared.h"
 
 #include <glm/geometric.hpp>
@@ -144,6 +145,10 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
                 edges[{u, w}].push_back(static_cast<uint32_t>(t));
             }
         }
+        const glm::vec3 emission =
+            mat.emissionTexture >= 0
+                ? mat.emission * imageMean(scene.textures[static_cast<size_t>(mat.emissionTexture)].image)
+                : mat.emission;
         const auto uvOf = [&](size_t t, int k) {
             return mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[mesh.indices[3 * t + k]];
         };
@@ -153,7 +158,9 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
             Quad q;
             q.body = oi;
             q.normal = normal[t];
-            q.emission = mat.emission;
+            // An emission texture enters as its mean (patches are coarser than texels; a named deviation
+            // in radiosity.md).
+            q.emission = emission;
             q.flags = glm::any(glm::greaterThan(mat.emission, glm::vec3(0.0f))) ? RAD_QUAD_EMITTER : 0u;
             glm::vec2 uv[4];
             uint32_t corners[2][3] = {};
