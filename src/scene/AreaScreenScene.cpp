@@ -46,10 +46,14 @@ constexpr float kBarVideoLevel = 0.75f;  // 75 % bars, sRGB-encoded
 constexpr std::array<glm::vec3, 7> kBarColours = {glm::vec3(1, 1, 1), glm::vec3(1, 1, 0), glm::vec3(0, 1, 1), glm::vec3(0, 1, 0),
                                                   glm::vec3(1, 0, 1), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1)};
 
-// Bouncing square (pattern=square): 64^2 texels, side a quarter of the screen's, the AreaTexture
-// defaults for its motion.
+// Bouncing square (pattern=square): 64^2 texels, by default side a quarter of the screen's (parameter
+// squareSize, a fraction of the screen's sides), the AreaTexture defaults for its motion. The
+// resolution is raised so that the square spans at least two texels (a smaller one would be lost in
+// the texel grid, not undersampled by the VPLs, which is what squareSize is for).
 constexpr int kSquareResolution = 64;
-constexpr float kSquareSize = 0.25f;
+constexpr double kDefaultSquareSize = 0.25;
+constexpr double kMinSquareSize = 1.0 / 256.0;  // 2 texels at kMaxSquareResolution
+constexpr int kMaxSquareResolution = 512;
 
 // Radiance: the floor just in front of the objects sees the screen at about 1.9 m, 40 degrees off its
 // axis and 50 degrees off the floor's normal: E ~ L_mean A cos cos / d^2 = 0.19 L_mean, a radiance of
@@ -137,6 +141,9 @@ Image colourBarsFrame(int k) {
 
 Expected<Scene> buildAreaScreen(const SceneParams& params) {
     BOUNCE_TRY(const std::string pattern, choiceParam(params, "area-screen", "pattern", "bars", {"bars", "square"}));
+    BOUNCE_TRY(const double squareSizeParam,
+               numberParam(params, "area-screen", "squareSize", kDefaultSquareSize, kMinSquareSize, 1.0));
+    const float squareSize = static_cast<float>(squareSizeParam);
     Scene s;
     s.name = "area-screen";
     s.source = "builtin:area-screen";
@@ -217,8 +224,11 @@ Expected<Scene> buildAreaScreen(const SceneParams& params) {
         screen.texture = AreaTexture{};
         screen.texture.kind = AreaTexture::Kind::BouncingSquare;
         screen.texture.resolution = kSquareResolution;
-        screen.texture.squareSize = kSquareSize;
-        screen.radiance = glm::vec3(kBarsRadiance * barsMean / (kSquareSize * kSquareSize));
+        while (squareSize * static_cast<float>(screen.texture.resolution) < 2.0f &&
+               screen.texture.resolution < kMaxSquareResolution)
+            screen.texture.resolution *= 2;
+        screen.texture.squareSize = squareSize;
+        screen.radiance = glm::vec3(kBarsRadiance * barsMean / (squareSize * squareSize));
     }
     s.lights.push_back(screen);
 

@@ -61,7 +61,9 @@ const std::vector<BuiltinEntry>& registry() {
           "A 1.6 m x 0.9 m textured, animated screen (the only light, one-sided) facing a stage of diffuse and "
           "glossy boxes and spheres; Nichols 2010 ch. 5's set-up",
           {{"pattern", "bars: the screen's video, bars (a colour-bar test card of 4 frames at 2 fps) or square (a "
-                       "white square bouncing on black); both emit the same mean flux"}}},
+                       "white square bouncing on black); both emit the same mean flux"},
+           {"squareSize", "0.25: pattern=square's side as a fraction of the screen's, in [1/256, 1] (same mean flux at "
+                          "any size; the texture gets finer below 1/32 so that the square spans two texels)"}}},
          buildAreaScreen},
         {{"furnished-room",
           "Closed 4 m x 2.6 m x 4 m living room lit by a spot pointing at the ceiling, with an open bookshelf and "
