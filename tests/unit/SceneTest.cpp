@@ -666,7 +666,24 @@ TEST(AreaScreen, TexturedScreenFacingDiffuseAndGlossyObjects) {
     EXPECT_NEAR(luminance(sq.radiance) * sq.texture.squareSize * sq.texture.squareSize / (luminance(screen.radiance) * barsMean),
                 1.0, 1e-5);
 
+    // squareSize: the same mean flux at any size; below 1/32 the texture doubles until the square spans
+    // two texels (1/64 of the side: 128^2 texels).
+    Expected<Scene> small = loadScene("area-screen", {{"pattern", "square"}, {"squareSize", "0.015625"}});
+    ASSERT_TRUE(small.ok()) << small.error().message;
+    const Light& sm = small->lights[0];
+    EXPECT_EQ(sm.texture.squareSize, 0.015625f);
+    EXPECT_EQ(sm.texture.resolution, 128);
+    EXPECT_NEAR(luminance(sm.radiance) * sm.texture.squareSize * sm.texture.squareSize /
+                    (luminance(sq.radiance) * sq.texture.squareSize * sq.texture.squareSize),
+                1.0, 1e-5);
+    EXPECT_EQ(sq.texture.resolution, 64);
+
     Expected<Scene> bad = loadScene("area-screen", {{"pattern", "plasma"}});
     ASSERT_FALSE(bad.ok());
     EXPECT_NE(bad.error().message.find("pattern"), std::string::npos) << bad.error().message;
+    for (const char* size : {"0", "1.5", "wide"}) {
+        Expected<Scene> badSize = loadScene("area-screen", {{"pattern", "square"}, {"squareSize", size}});
+        ASSERT_FALSE(badSize.ok()) << size;
+        EXPECT_NE(badSize.error().message.find("squareSize"), std::string::npos) << badSize.error().message;
+    }
 }
