@@ -11,10 +11,7 @@ R8 rows (summary ../shared/specs, result R8; thesis §5.4):
              (incremental, brute, incremental, ...), --reps repetitions; ratio per rep.
   voxels     128^2 x 128 vs 1024^2 x 128 voxel grids (thesis: "almost indistinguishable"): relMSE and
              HDR-FLIP against `bounce reference --bounces 0`, voxelize and gather ms.
-  vpls       256 vs 16,384 VPLs (vplsPerSide 16 vs 128, visibility none so that only the light's
-             sampling differs): the 256-VPL image against the 16,384-VPL one, on the diffuse Cornell
-             box and on a bouncing-square light (thesis Fig. 5.15: indistinguishable for diffuse
-             surfaces, not for the square).
+  vpls       256 vs 16,384 VPLs: moved to bench/area_light/vpls.py (record area-light-vpls-DATE).
   quality    relMSE / HDR-FLIP against `bounce reference --bounces 0` on cornell-box-area and the
              textured screen scene (area-screen), beside V = 1 and the shared centre-shadowed direct pass.
   baseline   at 1024 VPLs: incremental and brute-force voxel visibility against the rasterized
@@ -158,23 +155,7 @@ def main():
         rec["voxels"] = vox
         print("voxels", {k: round(v["vsReference"]["relMse"], 4) for k, v in vox.items() if isinstance(v, dict) and "vsReference" in v}, flush=True)
 
-        # 256 vs 16,384 VPLs.
-        vpls = {}
-        cases = {"cornell-box-area": CORNELL}
-        if has_scene(bounce, "area-screen"):
-            cases["bouncing-square"] = SQUARE
-        for name, case in cases.items():
-            entry = {}
-            outs = {}
-            for side in [16, 128]:
-                outs[side] = os.path.join(tmp, f"{name}-{side}.exr")
-                r, c = render(bounce, case, size, {"vplsPerSide": str(side), "visibility": "none"}, outs[side])
-                entry[str(side * side)] = {"command": c, "frameMs": summary(gpu(r, "area-light"))}
-            # The 16,384-VPL image is the light's converged sampling (same transport, V = 1).
-            entry["256vs16384"] = compare(bounce, outs[16], outs[128])
-            vpls[name] = entry
-        rec["vpls"] = vpls
-        print("vpls", {n: round(e["256vs16384"]["relMse"], 5) for n, e in vpls.items()}, flush=True)
+        # 256 vs 16,384 VPLs: bench/area_light/vpls.py (its own record, with voxel visibility).
 
     # Quality against the path tracer's direct light, on the Cornell box and the textured screen scene.
     with tempfile.TemporaryDirectory() as tmp:
