@@ -11,6 +11,10 @@ struct RenderSettings final : Configurable {
     float shadowBias = 0.002f;    // metres along the surface normal (normal-offset bias)
     float exposure = 0.0f;        // EV, for PNG output and the viewer
     std::string toneCurve = "aces";
+    // Per-pass timing (gl::GpuTimers::Mode): queries (GL timestamps, the frame as it runs) or finish
+    // (glFinish at every pass boundary, wall clock: each pass's own cost on a deferred renderer such
+    // as llvmpipe, slower frames).
+    std::string timing = "queries";
 
     void visitSettings(SettingsVisitor& v) override {
         static constexpr std::string_view curves[] = {"clamp", "reinhard", "aces"};
@@ -19,6 +23,11 @@ struct RenderSettings final : Configurable {
         v.field("shadowBias", shadowBias, "normal-offset shadow bias (metres)", 0.0f, 1.0f);
         v.field("exposure", exposure, "exposure for PNG output and the viewer (EV stops)", -20.0f, 20.0f);
         v.field("toneCurve", toneCurve, "tone curve for PNG output and the viewer", curves);
+        static constexpr std::string_view timings[] = {"queries", "finish"};
+        v.field("timing", timing,
+                "per-pass timers: queries (GL timestamps) or finish (glFinish at each pass boundary, wall clock: "
+                "truthful per-pass cost on llvmpipe, slower frames)",
+                timings);
     }
 };
 

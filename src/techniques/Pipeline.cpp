@@ -27,7 +27,9 @@ std::string_view componentName(Component c) {
 }
 
 Pipeline::Pipeline(const Scene& scene, glm::ivec2 size, const render::RenderSettings& settings)
-    : m_scene(scene), m_size(size), m_settings(settings), m_sceneGpu(scene), m_drawer(m_sceneGpu) {}
+    : m_scene(scene), m_size(size), m_settings(settings), m_sceneGpu(scene), m_drawer(m_sceneGpu) {
+    m_timers.setMode(settings.timing == "finish" ? gl::GpuTimers::Mode::Finish : gl::GpuTimers::Mode::Queries);
+}
 
 Expected<std::unique_ptr<Pipeline>> Pipeline::create(const Scene& scene, std::unique_ptr<Technique> technique,
                                                      glm::ivec2 size, const render::RenderSettings& settings) {

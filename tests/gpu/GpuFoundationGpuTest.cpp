@@ -125,6 +125,51 @@ TEST_F(GpuFoundationGpuTest, TimersReportNamedNonNegativePasses) {
     EXPECT_GE(passes[1].milliseconds, passes[2].milliseconds);
 }
 
+// Mode::Finish charges a pass its own work: a heavy fragment pass (rasterised by llvmpipe only at the
+// next flush) followed by an empty scope. With a glFinish at each boundary the heavy scope holds the
+// work: it takes at least 1 ms (256^2 fragments x 2,000 iterations: tens of ms on llvmpipe, well
+// over 1 ms on any GPU too) and more than 5x the empty one (which holds only two glFinish calls).
+TEST_F(GpuFoundationGpuTest, FinishTimersChargeEachPassItsOwnWork) {
+    ShaderDirOverride dir("finish-timers");
+    dir.write("quad.vert", "void main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
+                           "  gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0); }\n");
+    dir.write("heavy.frag", "out vec4 o_colour;\nvoid main() { float x = gl_FragCoord.x;\n"
+                            "  for (int i = 0; i < 2000; ++i) x = fract(x * 1.0001 + 0.37);\n"
+                            "  o_colour = vec4(x); }\n");
+    auto program = gl::Program::build({"heavy", {{GL_VERTEX_SHADER, "quad.vert"}, {GL_FRAGMENT_SHADER, "heavy.frag"}}});
+    ASSERT_TRUE(program.ok()) << program.error().message;
+    gl::Texture target = gl::Texture::create2D("test.finishTimers", 256, 256, GL_RGBA16F);
+    gl::Framebuffer fbo = gl::Framebuffer::create("test.finishTimers.fbo");
+    fbo.attach(GL_COLOR_ATTACHMENT0, target);
+    fbo.setDrawBuffers(1);
+    ASSERT_TRUE(fbo.complete());
+    const auto draw = [&] {
+        fbo.bind();
+        glViewport(0, 0, 256, 256);
+        program->use();
+        gl::Context::current()->bindEmptyVertexArray();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    };
+    draw();  // llvmpipe compiles the shader variant at the first draw: not the pass's work
+    glFinish();
+    gl::GpuTimers timers;
+    timers.setMode(gl::GpuTimers::Mode::Finish);
+    timers.beginFrame();
+    {
+        auto heavy = timers.scope("heavy");
+        draw();
+    }
+    { auto empty = timers.scope("empty"); }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const auto passes = timers.endFrame();
+    ASSERT_EQ(passes.size(), 3u);
+    EXPECT_EQ(passes[1].name, "heavy");
+    EXPECT_EQ(passes[2].name, "empty");
+    EXPECT_GT(passes[1].milliseconds, 1.0);
+    EXPECT_GT(passes[1].milliseconds, 5.0 * passes[2].milliseconds);
+    EXPECT_GE(passes[0].milliseconds, passes[1].milliseconds + passes[2].milliseconds);
+}
+
 TEST_F(GpuFoundationGpuTest, GBufferNormalsOfAKnownBox) {
     // An axis-aligned room (inward faces) seen from inside: every covered pixel's position lies on
     // one of the six planes, and its normal must be that plane's inward normal.
