@@ -25,6 +25,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
@@ -83,12 +84,16 @@ def main():
         print(name, "R1", round(entry["smRatio"]["median"], 1), "maps", round(entry["mapCountRatio"]["median"], 1),
               "frame", round(entry["frameSpeedup"]["median"], 2), flush=True)
     if os.path.exists(bench):
-        cmd = [bench, "--benchmark_filter=BM_Iir(OmniVsSpot|Flicker|QualityCornell|QualityCornellDynamic)$",
-               "--benchmark_format=json"]
-        out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
-        rec["bench"] = {"command": os.path.relpath(bench, ROOT) + " " + " ".join(cmd[1:]),
-                        "benchmarks": {b["name"]: {k: v for k, v in b.items() if isinstance(v, (int, float))}
-                                       for b in json.loads(out)["benchmarks"]}}
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "bench.json")
+            cmd = [bench, "--benchmark_filter=BM_Iir(OmniVsSpot|Flicker|QualityCornell|QualityCornellDynamic)/",
+                   "--benchmark_out_format=json", "--benchmark_out=" + out]
+            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            with open(out) as f:
+                results = json.load(f)["benchmarks"]
+        rec["bench"] = {"command": os.path.relpath(bench, ROOT) + " " + " ".join(cmd[1:3]),
+                        "benchmarks": {b["name"].split("/")[0]: {k: v for k, v in b.items() if isinstance(v, (int, float))}
+                                       for b in results}}
     print(write_record(rec))
 
 
