@@ -329,6 +329,15 @@ def nichols_table(rec, path):
     r4, r5 = rec["r4"], rec["r5"]
     lines.append(f"| R4 `normalThreshold` 0.25 / 1.4 frame time, {r4['size']}² (subsplats {r4['subsplats']['0.25']:.0f} / {r4['subsplats']['1.4']:.0f}) | {ratio_cell(r4['ratio'])} | ~4× (Buddha, 1024²) |")
     lines.append(f"| R5 `edgeNeighbours` off / on frame time, {r5['size']}² (subsplats {r5['subsplats']['off']:.0f} / {r5['subsplats']['on']:.0f}) | {ratio_cell(r5['ratio'])} | on costs up to 40 % |")
+    r6, r6path = newest("nichols-r6")
+    if r6 is not None:
+        full, multi = r6["against"].get("full1m.exr", {}), r6["against"].get("multires1m.exr", {})
+        def pct(rows, name):
+            return f"{100 * rows[name]['relRms']:.2f} %" if name in rows else "–"
+        lines.append(f"| R6 at {r6['size']}², relative RMS: eye clustering alone (`isr`, 1M VPLs) / `isr` light clusters to 256² "
+                     f"vs the 1M-VPL gather; `hisr` depth 3, τ 0.001 vs the 1M multiresolution gather (`{r6path}`, commit {r6['commit']}) | "
+                     f"{pct(full, 'multires1m.exr')} / {pct(full, 'isr_f256.exr')}; {pct(multi, 'hisr_d3_t0.001.exr')} "
+                     f"(`isr` defaults: {pct(full, 'isr_f64.exr')}) | 2–3 % / 5–6 % combined; 3–4 % light hierarchy |")
     return "\n".join(lines)
 
 
