@@ -1,6 +1,8 @@
 #include "app/Cli.h"
 
+#include "app/Options.h"
 #include "core/Log.h"
+#include "scene/SceneLoader.h"
 
 #include <iostream>
 
@@ -55,6 +57,8 @@ int runCli(int argc, char** argv) {
         return e.get_exit_code() == 0 ? 2 : e.get_exit_code();
     }
     setLogLevel(logLevel);
+    // Scene files' `settings` are checked against every technique's declared settings, whatever runs.
+    setSceneSettingCheck(checkSceneSetting);
     if (!action) return failCommand("", "no command");
     try {
         return action();

@@ -178,6 +178,8 @@ int runCompare(const CompareArgs& args) {
     fmt::print("MSE        {:<12.6g} linear\n", m.mse);
     fmt::print("RMSE       {:<12.6g} linear\n", m.rmse);
     fmt::print("relMSE     {:<12.6g} linear, (x-r)^2/(r^2+{})\n", m.relMse, kRelMseEpsilon);
+    fmt::print("relRMS     {:<12.6g} linear, sqrt(sum (x-r)^2 / sum r^2): read this for dim (indirect-only) images\n",
+               m.relRms);
     fmt::print("MAE        {:<12.6g} linear\n", m.mae);
     fmt::print("PSNR       {:<12} displayed, dB, peak 1\n", std::isfinite(m.psnr) ? fmt::format("{:.4f}", m.psnr) : "inf");
     fmt::print("SSIM       {:<12.6f} displayed, mean of R,G,B, 11x11 Gaussian window\n", m.ssim);

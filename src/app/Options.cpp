@@ -1,5 +1,7 @@
 #include "app/Options.h"
 
+#include "techniques/Registry.h"
+
 #include <charconv>
 
 namespace bounce {
@@ -54,6 +56,18 @@ bool route(const std::string& key, const std::string& value, std::string_view te
 }
 
 }  // namespace
+
+Expected<void> checkSceneSetting(const std::string& key, const std::string& value) {
+    const size_t dot = key.find('.');
+    if (dot == std::string::npos) return makeError("not of the form technique.setting");
+    const std::string owner = key.substr(0, dot), name = key.substr(dot + 1);
+    if (owner == "renderer") {
+        render::RenderSettings rs;
+        return applySettings(rs, {{name, value}}, "renderer");
+    }
+    BOUNCE_TRY(auto technique, createTechnique(owner));
+    return applySettings(*technique, {{name, value}}, fmt::format("technique '{}'", owner));
+}
 
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
                                 const std::vector<std::string>& cliSettings) {

@@ -25,6 +25,10 @@ Expected<Scene> loadSceneWithParams(const std::string& scene, const std::vector<
 // the shared renderer settings. Keys: "renderer.NAME", "TECHNIQUE.NAME" or a bare "NAME" (the
 // technique's). A key for another technique is ignored in the scene file and an error on the
 // command line.
+// The scene-file setting check of scene/SceneLoader.h against the registry: "renderer.NAME" against
+// RenderSettings, "TECHNIQUE.NAME" against a fresh instance of that technique (the key and its value).
+Expected<void> checkSceneSetting(const std::string& key, const std::string& value);
+
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
                                 const std::vector<std::string>& cliSettings);
 

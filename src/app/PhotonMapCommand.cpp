@@ -101,8 +101,9 @@ int runPhotonMap(const PhotonMapArgs& args) {
     bar.finish();
     if (!result) return fail(result.error().message);
     const PhotonMapResult& r = *result;
-    spdlog::info("photon-map: {} {}x{}, {} photons emitted{}, {} stored ({:.1f} MB), k {}: trace {:.1f} s, tree {:.2f} s, "
-                 "gather {:.1f} s; mean radius {:.4f} m; wrote {}{}",
+    // The one-line summary goes to stdout whatever --log-level says (docs/reference.md shows it).
+    fmt::print("photon-map: {} {}x{}, {} photons emitted{}, {} stored ({:.1f} MB), k {}: trace {:.1f} s, tree {:.2f} s, "
+                 "gather {:.1f} s; mean radius {:.4f} m; wrote {}{}\n",
                  scene->name, s.width, s.height, r.photonsEmitted,
                  r.stoppedByTimeLimit ? fmt::format(" (time limit; {} asked)", args.photons) : std::string(),
                  r.photonsStored, static_cast<double>(r.mapBytes) * 1e-6, s.k, r.traceSeconds, r.treeSeconds,

@@ -93,8 +93,9 @@ int runReference(const ReferenceArgs& args) {
     if (!result) return fail(result.error().message);
 
     const PathTracerResult& r = *result;
-    spdlog::info("reference: {} {}x{}, {} spp{} in {:.1f} s ({:.2f} M paths/s, {:.1f} M rays/s); noise {:.2f}% per "
-                 "pixel, {:.3f}% image mean; wrote {}{}",
+    // The one-line summary goes to stdout whatever --log-level says (docs/reference.md shows it).
+    fmt::print("reference: {} {}x{}, {} spp{} in {:.1f} s ({:.2f} M paths/s, {:.1f} M rays/s); noise {:.2f}% per "
+                 "pixel, {:.3f}% image mean; wrote {}{}\n",
                  scene->name, job.settings.width, job.settings.height, r.samplesPerPixel,
                  r.stoppedByTimeLimit ? fmt::format(" (time limit; {} asked)", args.spp) : std::string(),
                  r.renderSeconds, r.pathsPerSecond() * 1e-6, r.raysPerSecond() * 1e-6,

@@ -43,6 +43,11 @@ int runRender(const RenderOptions& o) {
     if (!technique.ok()) return failCommand(cmd, "--technique: " + technique.error().message);
     auto scene = loadSceneWithParams(o.scene, o.sceneParams);
     if (!scene.ok()) return failCommand(cmd, scene.error().message);
+    // As `bounce reference` (PathTracer::create): a black image is not a render of anything.
+    if (!scene->emitsLight())
+        return failCommand(cmd, fmt::format("scene '{}': no light source (no light with non-zero power and no object "
+                                            "with an emissive material)",
+                                            scene->name));
     render::RenderSettings renderSettings;
     if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings); !r.ok())
         return failCommand(cmd, r.error().message);

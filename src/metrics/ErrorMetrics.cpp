@@ -114,6 +114,7 @@ Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, 
     m.relMse = channelMean(test, reference,
                            [](double x, double r) { return squared(x, r) / (r * r + kRelMseEpsilon); });
     m.mae = channelMean(test, reference, [](double x, double r) { return std::abs(x - r); });
+    m.relRms = relativeRmsError(test, reference);
 
     const Image testDisplay = toDisplay(test, options.testToneMap);
     const Image referenceDisplay = toDisplay(reference, options.referenceToneMap);
@@ -150,6 +151,7 @@ nlohmann::json toJson(const ErrorMetrics& m) {
     if (std::isfinite(m.nrmse)) j["nrmse"] = m.nrmse;
     else j["nrmse"] = nullptr;
     j["relMse"] = m.relMse;
+    j["relRms"] = std::isfinite(m.relRms) ? nlohmann::json(m.relRms) : nlohmann::json(nullptr);
     j["mae"] = m.mae;
     j["psnr"] = std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json(nullptr);
     j["rmsSum8"] = m.rmsSum8;

@@ -37,6 +37,10 @@ struct ErrorMetrics {
                           // van de Hoef 2013 Table 5.1 compares its figures' images by an NRMSE whose
                           // normalisation it does not give: this is the range one on what is shown
     double relMse = 0.0;  // mean of (x - r)^2 / (r^2 + ε), ε = kRelMseEpsilon, linear
+    double relRms = 0.0;  // sqrt(sum (x - r)^2 / sum r^2) over pixels and channels, linear: the relative RMS
+                          // of Nichols 2010 Figs. 4.9/4.13; scale-free, so it reads the same for dim
+                          // indirect-only images (relMSE's epsilon swamps those); +inf for a black reference
+                          // against a non-black test
     double mae = 0.0;     // mean of |x - r|, linear
     double psnr = 0.0;    // 10 log10(1 / MSE of display values), dB; +infinity for identical displays
     double rmsSum8 = 0.0; // photon-splatting document's RMS: sum over R, G, B of the RMS difference of the

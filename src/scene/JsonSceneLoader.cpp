@@ -5,6 +5,7 @@
 #include "scene/AreaTexture.h"
 #include "scene/JsonLocator.h"
 #include "scene/ModelLoader.h"
+#include "scene/SceneLoader.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -74,6 +75,27 @@ private:
         return Error{where + ": " + fmt::format(format, std::forward<Args>(args)...)};
     }
 
+    // A value-level error: names the key by its path in the file ("materials/white/baseColor"), so a
+    // message is readable without the line, and says what was found.
+    template <class... Args>
+    Error valueErr(const std::string& pointer, fmt::format_string<Args...> format, Args&&... args) const {
+        const std::string key = pointer.empty() ? std::string("(root)") : pointer.substr(1);
+        return err(pointer, "{}: {}", key, fmt::format(format, std::forward<Args>(args)...));
+    }
+
+    static std::string found(const json& j) {
+        if (j.is_string()) {
+            std::string v = j.get<std::string>();
+            if (v.size() > 24) v = v.substr(0, 21) + "...";
+            return fmt::format("the string \"{}\"", v);
+        }
+        if (j.is_number()) return fmt::format("the number {}", j.dump());
+        if (j.is_boolean()) return j.get<bool>() ? "true" : "false";
+        if (j.is_null()) return "null";
+        if (j.is_array()) return fmt::format("an array of {}", j.size());
+        return "an object";
+    }
+
     std::string origin(const std::string& pointer) const {
         const int line = m_locator.line(pointer);
         return line > 0 ? fmt::format("{}:{}", m_path.string(), line) : m_path.string();
@@ -93,25 +115,25 @@ private:
     }
 
     Expected<std::string> text(const json& j, const std::string& p) const {
-        if (!j.is_string()) return err(p, "expected a string");
+        if (!j.is_string()) return valueErr(p, "expected a string, got {}", found(j));
         return j.get<std::string>();
     }
 
     Expected<bool> boolean(const json& j, const std::string& p) const {
-        if (!j.is_boolean()) return err(p, "expected true or false");
+        if (!j.is_boolean()) return valueErr(p, "expected true or false, got {}", found(j));
         return j.get<bool>();
     }
 
     Expected<float> number(const json& j, const std::string& p, float lo = -kInf, float hi = kInf) const {
-        if (!j.is_number()) return err(p, "expected a number");
+        if (!j.is_number()) return valueErr(p, "expected a number, got {}", found(j));
         const double v = j.get<double>();
-        if (!std::isfinite(v)) return err(p, "value is not finite");
-        if (v < lo || v > hi) return err(p, "value {} is outside [{}, {}]", v, lo, hi);
+        if (!std::isfinite(v)) return valueErr(p, "value is not finite");
+        if (v < lo || v > hi) return valueErr(p, "value {} is outside [{}, {}]", v, lo, hi);
         return static_cast<float>(v);
     }
 
     Expected<glm::vec3> vec3(const json& j, const std::string& p) const {
-        if (!j.is_array() || j.size() != 3) return err(p, "expected an array of 3 numbers");
+        if (!j.is_array() || j.size() != 3) return valueErr(p, "expected an array of 3 numbers, got {}", found(j));
         glm::vec3 v(0.0f);
         for (int i = 0; i < 3; ++i) {
             BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i)));
@@ -120,7 +142,7 @@ private:
     }
 
     Expected<glm::vec2> vec2(const json& j, const std::string& p, float lo, float hi) const {
-        if (!j.is_array() || j.size() != 2) return err(p, "expected an array of 2 numbers");
+        if (!j.is_array() || j.size() != 2) return valueErr(p, "expected an array of 2 numbers, got {}", found(j));
         glm::vec2 v(0.0f);
         for (int i = 0; i < 2; ++i) {
             BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i), lo, hi));
@@ -134,7 +156,7 @@ private:
             BOUNCE_TRY(const float v, number(j, p, lo, hi));
             return glm::vec3(v);
         }
-        if (!j.is_array() || j.size() != 3) return err(p, "expected a number or an array [r, g, b]");
+        if (!j.is_array() || j.size() != 3) return valueErr(p, "expected a number or an array [r, g, b], got {}", found(j));
         glm::vec3 v(0.0f);
         for (int i = 0; i < 3; ++i) {
             BOUNCE_TRY(v[i], number(j[static_cast<size_t>(i)], p + "/" + std::to_string(i), lo, hi));
@@ -227,6 +249,10 @@ private:
             if (value.is_string()) m_scene.settings[key] = value.get<std::string>();
             else if (value.is_number() || value.is_boolean()) m_scene.settings[key] = value.dump();
             else return err(vp, "setting \"{}\" must be a string, number or boolean", key);
+            if (const SceneSettingCheck& check = sceneSettingCheck()) {
+                if (auto ok = check(key, m_scene.settings[key]); !ok.ok())
+                    return err(vp, "setting \"{}\": {}", key, ok.error().message);
+            }
         }
         return {};
     }
@@ -410,8 +436,10 @@ private:
                 l.direction = target - l.position;
             }
             BOUNCE_TRY_VOID(need("cutoffDegrees"));
-            BOUNCE_TRY(const float cutoff, number(j["cutoffDegrees"], p + "/cutoffDegrees", 0.0f, 180.0f));
-            if (!(cutoff > 0.0f)) return err(p + "/cutoffDegrees", "{}: spot cutoff must be positive", what);
+            BOUNCE_TRY(const float cutoff, number(j["cutoffDegrees"], p + "/cutoffDegrees"));
+            // (0, 180] as docs/scene.md says: a zero cone lights nothing.
+            if (!(cutoff > 0.0f) || cutoff > 180.0f)
+                return valueErr(p + "/cutoffDegrees", "{}: value {} is outside (0, 180]", what, cutoff);
             l.cutoffAngle = glm::radians(cutoff);
             if (j.contains("falloffExponent")) {
                 BOUNCE_TRY(l.falloffExponent, number(j["falloffExponent"], p + "/falloffExponent", 0.0f, kInf));

@@ -126,6 +126,25 @@ bool Scene::hasEmissiveMaterials() const {
                        [](const Material& m) { return glm::any(glm::greaterThan(m.emission, glm::vec3(0.0f))); });
 }
 
+bool Scene::emitsLight() const {
+    const auto positive = [](glm::vec3 v) { return glm::any(glm::greaterThan(v, glm::vec3(0.0f))); };
+    for (const Light& l : lights) {
+        switch (l.type) {
+            case LightType::Point:
+            case LightType::Spot:
+                if (positive(l.intensity)) return true;
+                break;
+            case LightType::Directional:
+                if (positive(l.irradiance)) return true;
+                break;
+            case LightType::Area:
+                if (positive(l.radiance)) return true;
+                break;
+        }
+    }
+    return hasEmissiveMaterials();
+}
+
 void Scene::bounds(float t, glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(std::numeric_limits<float>::max());
     hi = glm::vec3(-std::numeric_limits<float>::max());

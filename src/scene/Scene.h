@@ -181,6 +181,10 @@ struct Scene {
 
     size_t triangleCount() const;
     bool hasEmissiveMaterials() const;
+    // Some light has non-zero power (its intensity, irradiance or radiance; a textured area light
+    // counts even if its texture is black at some frame) or some material emits. `bounce render` and
+    // `bounce reference` both refuse a scene without (docs/scene.md "Validation").
+    bool emitsLight() const;
     float timeOfFrame(uint32_t frame) const { return static_cast<float>(frame) / frameRate; }
     // Axis-aligned bounds of all objects at time t.
     void bounds(float t, glm::vec3& lo, glm::vec3& hi) const;

@@ -74,6 +74,11 @@ const std::vector<BuiltinEntry>& registry() {
     return entries;
 }
 
+SceneSettingCheck& settingCheck() {
+    static SceneSettingCheck check;
+    return check;
+}
+
 std::string knownBuiltins() {
     std::string names;
     for (const BuiltinEntry& e : registry()) names += (names.empty() ? "" : ", ") + e.info.name;
@@ -81,6 +86,9 @@ std::string knownBuiltins() {
 }
 
 }  // namespace
+
+void setSceneSettingCheck(SceneSettingCheck check) { settingCheck() = std::move(check); }
+const SceneSettingCheck& sceneSettingCheck() { return settingCheck(); }
 
 const std::vector<BuiltinSceneInfo>& builtinScenes() {
     static const std::vector<BuiltinSceneInfo> infos = [] {

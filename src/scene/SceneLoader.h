@@ -5,6 +5,7 @@
 #include "core/Error.h"
 #include "scene/Scene.h"
 
+#include <functional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -28,6 +29,14 @@ const std::vector<BuiltinSceneInfo>& builtinScenes();
 // `params` are built-in scene parameters (e.g. atrium's "triangles"); unknown ones are errors.
 // The returned scene has passed finalizeScene().
 Expected<Scene> loadScene(std::string_view nameOrPath, const SceneParams& params = {});
+
+// Checks one scene-file setting ("technique.setting" or "renderer.setting" -> value text) against the
+// settings the program declares. The scene layer knows no techniques: the application installs the
+// check (app/Options.cpp), and JSON scene files run every key through it whatever technique (or the
+// reference) runs, so a typo fails with the file and line. No check installed: keys are not checked.
+using SceneSettingCheck = std::function<Expected<void>(const std::string& key, const std::string& value)>;
+void setSceneSettingCheck(SceneSettingCheck check);
+const SceneSettingCheck& sceneSettingCheck();
 
 // Validates a scene and fills derived data. Errors (non-finite values, indices out of range,
 // meshes whose every triangle is degenerate, bad light or camera parameters) name the object.

@@ -98,3 +98,36 @@ expect_failure("photon-map k 1" "--k" ${WORK}/pm.exr photon-map --scene cornell-
 expect_failure("photon-map no photons" "--photons" ${WORK}/pm.exr photon-map --scene cornell-box --photons 0 --out ${WORK}/pm.exr)
 expect_failure("photon-map bad stats" "JSON" ${WORK}/pm.exr photon-map --scene cornell-box --size 8x8 --out ${WORK}/pm.exr --stats ${WORK}/pm.txt)
 expect_failure("photon-map missing folder" "does not exist" "" photon-map --scene cornell-box --out ${WORK}/none/pm.exr)
+
+# What a new user tripped over (issue "Reliability"): errors name the key and what was found; the spot
+# cutoff's range is (0, 180] as documented; scene-file settings are checked whatever runs.
+file(WRITE ${WORK}/keys.json "{\"objects\": [{\"model\": \"tri.obj\", \"material\": \"m\"}],\n\"materials\": {\"m\": {\"roughness\": \"rough\"}},\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]}}\n")
+expect_failure("string for a number" "materials/m/roughness: expected a number, got the string \"rough\"" ${WORK}/nu.png
+               render --scene ${WORK}/keys.json --size 8x8 --out ${WORK}/nu.png)
+file(WRITE ${WORK}/albedo.json "{\"objects\": [{\"model\": \"tri.obj\", \"material\": \"m\"}],\n\"materials\": {\"m\": {\"baseColor\": -0.4}},\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]}}\n")
+expect_failure("albedo out of range" "albedo.json:2: materials/m/baseColor: value -0.4 is outside [0, 1]" ${WORK}/nu.png
+               render --scene ${WORK}/albedo.json --size 8x8 --out ${WORK}/nu.png)
+file(WRITE ${WORK}/cutoff.json "{\"objects\": [{\"model\": \"tri.obj\"}],\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]},\n\"lights\": [{\"type\": \"spot\", \"position\": [0, 1, 0], \"direction\": [0, -1, 0], \"intensity\": 1,\n  \"cutoffDegrees\": 0}]}\n")
+expect_failure("spot cutoff 0" "cutoff.json:4: lights/0/cutoffDegrees: light 'light-0': value 0 is outside (0, 180]" ${WORK}/nu.png
+               render --scene ${WORK}/cutoff.json --size 8x8 --out ${WORK}/nu.png)
+file(WRITE ${WORK}/typo.json "{\"objects\": [{\"model\": \"tri.obj\"}],\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]},\n\"settings\": {\"rsm.vplgrid\": 8}}\n")
+expect_failure("scene setting typo under direct" "typo.json:3: setting \"rsm.vplgrid\"" ${WORK}/nu.png
+               render --scene ${WORK}/typo.json --technique direct --size 8x8 --out ${WORK}/nu.png)
+expect_failure("scene setting typo under reference" "unknown setting 'vplgrid'" ${WORK}/ref.exr
+               reference --scene ${WORK}/typo.json --size 8x8 --spp 1 --out ${WORK}/ref.exr)
+file(WRITE ${WORK}/notech.json "{\"objects\": [{\"model\": \"tri.obj\"}],\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]},\n\"settings\": {\"rsmm.vplGrid\": 8}}\n")
+expect_failure("scene setting of an unknown technique" "rsmm" ${WORK}/nu.png
+               render --scene ${WORK}/notech.json --size 8x8 --out ${WORK}/nu.png)
+
+# A light of zero power: render and reference agree (both refuse, naming the scene).
+file(WRITE ${WORK}/dark.json "{\"objects\": [{\"model\": \"tri.obj\"}],\n\"camera\": {\"position\": [0, 1, 3], \"target\": [0, 0, 0]},\n\"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": 0}]}\n")
+expect_failure("render with a dark light" "no light source" ${WORK}/nu.png render --scene ${WORK}/dark.json --size 8x8 --out ${WORK}/nu.png)
+expect_failure("reference with a dark light" "no light source" ${WORK}/ref.exr
+               reference --scene ${WORK}/dark.json --size 8x8 --spp 1 --out ${WORK}/ref.exr)
+
+# bounce reference prints its one-line summary on success (docs/reference.md), at the default log level.
+execute_process(COMMAND ${BOUNCE} reference --scene cornell-box --size 8x8 --spp 2 --out ${WORK}/ref.exr
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "^reference: cornell-box 8x8, 2 spp in [0-9.]+ s \\([0-9.]+ M paths/s, [0-9.]+ M rays/s\\); noise [0-9.]+% per pixel, [0-9.]+% image mean; wrote .*ref.exr\n$")
+  message(SEND_ERROR "reference summary line missing or malformed (${rc}): '${out}' ${err}")
+endif()

@@ -239,6 +239,9 @@ TEST(ErrorMetrics, RelativeRmsErrorOfKnownPairs) {
     const Image black(4, 2, glm::vec3(0.0f));
     EXPECT_EQ(relativeRmsError(black, black), 0.0);
     EXPECT_TRUE(std::isinf(relativeRmsError(one, black)));
+    // compareImages reports the same (bounce compare's relRMS line and JSON relRms).
+    EXPECT_NEAR(compareImages(one, half)->relRms, std::sqrt(0.5), 1e-12);
+    EXPECT_TRUE(toJson(*compareImages(one, black))["relRms"].is_null());
 }
 
 TEST(ErrorMetrics, PsnrOfKnownDisplayDifference) {
