@@ -341,9 +341,53 @@ def nichols_table(rec, path):
     return "\n".join(lines)
 
 
+def foundation_table(rec, path):
+    lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); "
+             f"`{rec['command']}`.", "",
+             "`direct`, 512², median GPU frame time over 20 frames (run record `median_ms`, timestamp queries), median "
+             "(min–max) over the repetitions:", "",
+             "| scene | triangles | frame | G-buffer | direct light | command |", "|---|---|---|---|---|---|"]
+    for scene, e in rec["direct"].items():
+        ms = e["ms"]
+        lines.append(f"| `{scene}` | {e['triangles']:,} | {rng(ms['frame'])} ms | {rng(ms['gbuffer'])} ms | "
+                     f"{rng(ms['direct'])} ms | `{e['command']}` |")
+    ref = rec["reference"]
+    runs = {}
+    for b in ref["benchmarks"]:
+        if b.get("run_type") != "iteration":
+            continue
+        runs.setdefault(b["run_name"], []).append(b)
+    names = {"scene:0": "cornell-box", "scene:1": "two-rooms", "scene:2": "atrium"}
+    lines += ["", f"The reference path tracer (`{ref['command']}`): `cornell-box-area` at 512², other scenes at 256², "
+              "paths of at most 64 reflections; median (min–max) over the 5 repetitions, millions per second:", "",
+              "| benchmark | scene | threads | SIMD kernel | camera paths/s | rays/s |", "|---|---|---|---|---|---|"]
+    for name, bs in runs.items():
+        parts = dict(p.split(":", 1) for p in name.split("/")[1:] if ":" in p)
+        if name.startswith("BM_ReferencePathTracer"):
+            scene = names.get(f"scene:{parts['scene']}", "?") if "scene" in parts else "cornell-box-area"
+            threads = parts.get("threads", "0")
+            threads = "all" if threads == "0" else threads
+            paths = summary_of([b["paths/s"] * 1e-6 for b in bs])
+            rays = summary_of([b["rays/s"] * 1e-6 for b in bs])
+            lines.append(f"| `{name.split('/')[0]}` | `{scene}` | {threads} | {'on' if parts.get('vectorized') == '1' else 'off'} | "
+                         f"{paths['median']:.2f} ({paths['min']:.2f}–{paths['max']:.2f}) | {rays['median']:.1f} ({rays['min']:.1f}–{rays['max']:.1f}) |")
+    casts = [(n, summary_of([b["rays/s"] * 1e-6 for b in bs])) for n, bs in runs.items() if n.startswith("BM_ReferenceRayCaster")]
+    if casts:
+        lines += ["", "Ray-casting service (random rays in the same box), M rays/s: "
+                  + "; ".join(f"`{n.split('/')[0].replace('BM_ReferenceRayCaster', '')}` {c['median']:.1f} ({c['min']:.1f}–{c['max']:.1f})" for n, c in casts) + "."]
+    return "\n".join(lines)
+
+
+def summary_of(values):
+    values = sorted(values)
+    n = len(values)
+    median = values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
+    return {"min": values[0], "median": median, "max": values[-1], "n": n}
+
+
 GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table,
               "area-light": area_light_table, "vpl-visibility": vpl_visibility_table,
-              "iir": iir_table, "nichols": nichols_table}
+              "iir": iir_table, "nichols": nichols_table, "foundation": foundation_table}
 
 
 def main():
