@@ -9,6 +9,17 @@ import subprocess
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
 def new_record(name, command, bounce):
     info = subprocess.run([bounce, "info"], capture_output=True, text=True).stdout.splitlines()
     return {
@@ -16,7 +27,7 @@ def new_record(name, command, bounce):
         "command": command,
         "commit": subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "machine": f"{platform.node()} {platform.machine()} {os.cpu_count()} cores",
+        "machine": f"{platform.node()} {platform.machine()} {cpu_model()}, {os.cpu_count()} cores",
         "gpu": " ".join(l.split(None, 1)[1] for l in info if l.startswith("renderer")),
     }
 

@@ -368,9 +368,10 @@ def foundation_table(rec, path):
             threads = parts.get("threads", "0")
             threads = "all" if threads == "0" else threads
             paths = summary_of([b["paths/s"] * 1e-6 for b in bs])
-            rays = summary_of([b["rays/s"] * 1e-6 for b in bs])
+            rays = summary_of([b.get("rays/s", 0.0) * 1e-6 for b in bs])
             lines.append(f"| `{name.split('/')[0]}` | `{scene}` | {threads} | {'on' if parts.get('vectorized') == '1' else 'off'} | "
-                         f"{paths['median']:.2f} ({paths['min']:.2f}–{paths['max']:.2f}) | {rays['median']:.1f} ({rays['min']:.1f}–{rays['max']:.1f}) |")
+                         f"{paths['median']:.2f} ({paths['min']:.2f}–{paths['max']:.2f}) | "
+                         + (f"{rays['median']:.1f} ({rays['min']:.1f}–{rays['max']:.1f})" if rays['max'] > 0 else "–") + " |")
     casts = [(n, summary_of([b["rays/s"] * 1e-6 for b in bs])) for n, bs in runs.items() if n.startswith("BM_ReferenceRayCaster")]
     if casts:
         lines += ["", "Ray-casting service (random rays in the same box), M rays/s: "
