@@ -33,8 +33,12 @@ struct Level {
     const glm::vec4& at(glm::ivec2 c) const { return texels[static_cast<size_t>(c.y * size.x + c.x)]; }
 };
 
-// The §3.2.5 pseudo-code, coarsest to finest, with the choices listed at the top of this file.
-std::vector<Level> cpuUpsample(const std::vector<Level>& rendered) {
+// The §3.2.5 pseudo-code, coarsest to finest, with the choices listed at the top of this file; with
+// Nearest an unrendered texel with data copies its input, with Bilinear it interpolates the coarser
+// level's result at its centre, empty parents counting as black (the comparison filters of the
+// `upsampling` setting).
+std::vector<Level> cpuUpsample(const std::vector<Level>& rendered,
+                               nichols::UpsampleFilter filter = nichols::UpsampleFilter::EmptyAware) {
     const int levels = static_cast<int>(rendered.size());
     std::vector<Level> result(rendered.size());
     for (int l = levels - 1; l >= 0; --l) {
@@ -55,6 +59,25 @@ std::vector<Level> cpuUpsample(const std::vector<Level>& rendered) {
                 if (!hasData(t)) continue;  // empty stays empty
                 if (r.at(t).a > 0.5f) {
                     out.at(t) = glm::vec4(glm::vec3(r.at(t)) + glm::vec3(input(t)), 1.0f);
+                    continue;
+                }
+                if (filter == nichols::UpsampleFilter::Nearest) {
+                    out.at(t) = glm::vec4(glm::vec3(input(t)), 1.0f);
+                    continue;
+                }
+                if (filter == nichols::UpsampleFilter::Bilinear) {
+                    const Level& parent = result[static_cast<size_t>(l + 1)];
+                    const glm::dvec2 p = (glm::dvec2(t) + 0.5) * 0.5 - 0.5;
+                    const glm::ivec2 p0(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y)));
+                    const glm::dvec2 f = p - glm::dvec2(p0);
+                    glm::dvec3 sum(0.0);
+                    for (int dy = 0; dy <= 1; ++dy)
+                        for (int dx = 0; dx <= 1; ++dx) {
+                            const glm::vec4 v = parent.at(glm::clamp(p0 + glm::ivec2(dx, dy), glm::ivec2(0), parent.size - 1));
+                            const double w = (dx ? f.x : 1.0 - f.x) * (dy ? f.y : 1.0 - f.y);
+                            if (v.a > 0.5f) sum += w * glm::dvec3(glm::vec3(v));
+                        }
+                    out.at(t) = glm::vec4(glm::vec3(sum), 1.0f);
                     continue;
                 }
                 glm::dvec3 sum(0.0);
@@ -85,7 +108,7 @@ struct Lcg {
 
 }  // namespace
 
-TEST_F(NicholsUpsampleGpuTest, EmptyAwareUpsamplingMatchesTheCpuFormula) {
+static void checkAgainstCpu(nichols::UpsampleFilter filter) {
     // 12x10 -> 6x5 -> 3x2: odd sizes, so level 1's last row has no parent row of its own (clamped).
     const std::vector<glm::ivec2> sizes = {{12, 10}, {6, 5}, {3, 2}};
     auto buffer = nichols::MultiresBuffer::create();
@@ -115,9 +138,9 @@ TEST_F(NicholsUpsampleGpuTest, EmptyAwareUpsamplingMatchesTheCpuFormula) {
         rendered.push_back(level);
     }
     glTextureSubImage2D(buffer->atlas().id(), 0, 0, 0, atlasSize.x, atlasSize.y, GL_RGBA, GL_FLOAT, atlas.data());
-    buffer->upsample();
+    buffer->upsample(filter);
 
-    const std::vector<Level> expected = cpuUpsample(rendered);
+    const std::vector<Level> expected = cpuUpsample(rendered, filter);
     int empty0 = 0, filtered0 = 0;
     for (int k = 0; k < 3; ++k) {
         const Level& e = expected[static_cast<size_t>(k)];
@@ -141,4 +164,31 @@ TEST_F(NicholsUpsampleGpuTest, EmptyAwareUpsamplingMatchesTheCpuFormula) {
     // construction, texels rendered there.
     EXPECT_GT(empty0, 5);
     EXPECT_GT(filtered0, 20);
+}
+
+TEST_F(NicholsUpsampleGpuTest, EmptyAwareUpsamplingMatchesTheCpuFormula) { checkAgainstCpu(nichols::UpsampleFilter::EmptyAware); }
+TEST_F(NicholsUpsampleGpuTest, NearestUpsamplingMatchesTheCpuFormula) { checkAgainstCpu(nichols::UpsampleFilter::Nearest); }
+TEST_F(NicholsUpsampleGpuTest, NaiveBilinearUpsamplingMatchesTheCpuFormula) { checkAgainstCpu(nichols::UpsampleFilter::Bilinear); }
+
+// The three filters differ on the same atlas (each is a different reconstruction, not a renamed one).
+TEST_F(NicholsUpsampleGpuTest, FiltersDiffer) {
+    Lcg rng{777u};
+    std::vector<Level> rendered;
+    for (glm::ivec2 size : {glm::ivec2(8, 8), glm::ivec2(4, 4), glm::ivec2(2, 2)}) {
+        Level level;
+        level.size = size;
+        for (int i = 0; i < size.x * size.y; ++i)
+            level.texels.push_back(rng.next() < 0.4f ? glm::vec4(rng.next(), rng.next(), rng.next(), 1.0f) : glm::vec4(0.0f));
+        rendered.push_back(level);
+    }
+    const auto a = cpuUpsample(rendered, nichols::UpsampleFilter::EmptyAware)[0].texels;
+    const auto n = cpuUpsample(rendered, nichols::UpsampleFilter::Nearest)[0].texels;
+    const auto b = cpuUpsample(rendered, nichols::UpsampleFilter::Bilinear)[0].texels;
+    double an = 0.0, ab = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        an += glm::length(glm::vec3(a[i] - n[i]));
+        ab += glm::length(glm::vec3(a[i] - b[i]));
+    }
+    EXPECT_GT(an, 0.5);
+    EXPECT_GT(ab, 0.5);
 }

@@ -9,7 +9,10 @@
 // them); a cell rendered at this level keeps its value (deviation: the thesis's pseudo-code filters it
 // too, which blurs full-resolution results across edges). Output only where the cell has data, so
 // energy never crosses into or out of empty cells.
-// Host uniforms: u_level, u_levelOrigin, u_size, u_parentSize, u_hasParent, u_replaceInherited.
+// u_filter (nichols::UpsampleFilter) 1 and 2 replace the empty-aware filter for comparison: 1 copies the
+// inherited (nearest parent) value; 2 interpolates the parent level bilinearly at the cell centre,
+// empty parents counting as black (the naive reconstruction §3.2.5 avoids).
+// Host uniforms: u_level, u_levelOrigin, u_size, u_parentSize, u_hasParent, u_replaceInherited, u_filter.
 // Inputs: atlas (BINDING_TEX_TECH0), result of level k+1 (BINDING_TEX_TECH1, lod k+1).
 // Output: result of level k (image BINDING_IMG0, rgba32f 2D array mip k; alpha 1 = has data).
 #include "techniques/nichols/atlas.glsl"
@@ -21,6 +24,7 @@ uniform ivec2 u_size;
 uniform ivec2 u_parentSize;
 uniform bool u_hasParent;
 uniform bool u_replaceInherited;
+uniform int u_filter;  // 0 empty-aware (thesis), 1 nearest, 2 naive bilinear
 
 vec4 cellValue(ivec2 c) {
     vec4 rendered = texelFetch(s_atlas, u_levelOrigin + c, 0);
@@ -37,6 +41,22 @@ void main() {
     bool renderedHere = texelFetch(s_atlas, u_levelOrigin + c, 0).a > 0.5;
     if (renderedHere) {
         result = vec4(own.rgb, 1.0);
+    } else if (own.a > 0.5 && u_filter == 1) {
+        result = vec4(own.rgb, 1.0);
+    } else if (own.a > 0.5 && u_filter == 2) {
+        // Parent texel space: cell c's centre is at (c + 0.5) / 2 - 0.5; empty parents are black (rgb 0
+        // where alpha 0, as the result level stores them).
+        vec2 p = (vec2(c) + 0.5) * 0.5 - 0.5;
+        ivec2 p0 = ivec2(floor(p));
+        vec2 f = p - vec2(p0);
+        vec3 sum = vec3(0.0);
+        for (int dy = 0; dy <= 1; ++dy)
+            for (int dx = 0; dx <= 1; ++dx) {
+                ivec2 q = clamp(p0 + ivec2(dx, dy), ivec2(0), u_parentSize - 1);
+                vec4 v = texelFetch(s_parent, ivec3(q, 0), u_level + 1);
+                sum += (dx == 1 ? f.x : 1.0 - f.x) * (dy == 1 ? f.y : 1.0 - f.y) * (v.a > 0.5 ? v.rgb : vec3(0.0));
+            }
+        result = vec4(sum, 1.0);
     } else if (own.a > 0.5) {
         vec3 sum = vec3(0.0);
         float weight = 0.0;

@@ -33,6 +33,7 @@ void HisrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("maxDepth", m_maxDepth, "tree levels below the roots a fragment may descend (thesis 1..3)", 0, 6);
     v.field("tau", m_tau, "Eq. 4.8 refinement threshold on the normalised contribution bound (assumption)", 1e-6f, 0.999f);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
+    v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2)");
@@ -115,7 +116,7 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         });
         ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
-    m_eye->finish(ctx, indirect, fragments);
+    m_eye->finish(ctx, indirect, fragments, nichols::upsampleFilter(m_upsampling));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     // gather.frag's counters: visited nodes (low, high word) and its invocations over all draws.
     uint32_t counts[3] = {0, 0, 0};

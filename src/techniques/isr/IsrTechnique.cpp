@@ -45,6 +45,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("lightCoarsest", m_lightCoarsest, "clusters: coarsest light-space patch grid (thesis 16)", 1, 2048);
     v.field("lightFinest", m_lightFinest, "clusters: finest light-space patch grid (assumption 64; up to rsmSize)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
+    v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: not adopted, up to 40 % slower)");
@@ -135,7 +136,7 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         });
         ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
-    m_eye->finish(ctx, indirect, fragments);
+    m_eye->finish(ctx, indirect, fragments, nichols::upsampleFilter(m_upsampling));
     m_visibility->report(ctx);
     ctx.counters["vpls"] = static_cast<double>(m_vplCount);
 }

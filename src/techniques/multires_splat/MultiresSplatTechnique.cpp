@@ -69,6 +69,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
+    v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2, metres (assumption)", 0.0f, 10.0f);
     v.field("detailModulation", m_detailModulation, "Eq. 3.3: modulate indirect light by alpha <V,N> + (1 - alpha) (§3.3.3)");
     v.field("detailAlpha", m_detailAlpha, "Eq. 3.3's alpha (thesis 0.5, Fig. 3.9)", 0.0f, 1.0f);
@@ -126,7 +127,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
         if (!m_rsm->render(ctx, m_rsmSize)) {
             buildEye(ctx);
             m_buffer->begin(*m_eye);  // empty atlas: zero indirect light
-            m_buffer->upsample();
+            m_buffer->upsample(nichols::upsampleFilter(m_upsampling));
             m_buffer->combine(ctx.gbuffer, indirect);
             return;
         }
@@ -261,11 +262,11 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     }
     {
         auto s = ctx.timers.scope("upsample");
-        m_buffer->upsample();
+        m_buffer->upsample(nichols::upsampleFilter(m_upsampling));
         const float detailAlpha = m_detailModulation ? m_detailAlpha : 0.0f;
         m_buffer->combine(ctx.gbuffer, indirect, detailAlpha);
         if (glossy) {
-            m_glossy->upsample();
+            m_glossy->upsample(nichols::upsampleFilter(m_upsampling));
             m_glossyFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
             m_glossyFbo.setDrawBuffers(1);
             BOUNCE_CHECK(m_glossyFbo.complete(), "multires-splat glossy combine framebuffer");

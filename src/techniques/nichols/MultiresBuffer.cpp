@@ -171,11 +171,18 @@ void MultiresBuffer::bindAtlas() {
     glViewport(0, 0, m_atlasSize.x, m_atlasSize.y);
 }
 
-void MultiresBuffer::upsample() {
-    for (int k = levels() - 1; k >= 0; --k) upsampleLevel(k);
+UpsampleFilter upsampleFilter(std::string_view name) {
+    for (size_t i = 0; i < std::size(kUpsampleFilters); ++i)
+        if (kUpsampleFilters[i] == name) return static_cast<UpsampleFilter>(i);
+    BOUNCE_CHECK(false, "unknown upsampling filter '{}' (settings validate the choice)", name);
+    return UpsampleFilter::EmptyAware;
 }
 
-void MultiresBuffer::upsampleLevel(int k, bool replaceInherited) {
+void MultiresBuffer::upsample(UpsampleFilter filter) {
+    for (int k = levels() - 1; k >= 0; --k) upsampleLevel(k, false, filter);
+}
+
+void MultiresBuffer::upsampleLevel(int k, bool replaceInherited, UpsampleFilter filter) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     m_atlas.bind(BINDING_TEX_TECH0);
     m_result.bind(BINDING_TEX_TECH1);
@@ -187,6 +194,7 @@ void MultiresBuffer::upsampleLevel(int k, bool replaceInherited) {
     m_upsample.set("u_parentSize", k + 1 < levels() ? levelSize(k + 1) : s);
     m_upsample.set("u_hasParent", k + 1 < levels() ? 1 : 0);
     m_upsample.set("u_replaceInherited", replaceInherited ? 1 : 0);
+    m_upsample.set("u_filter", static_cast<int>(filter));
     m_upsample.use();
     glDispatchCompute(static_cast<GLuint>((s.x + kLocalSize - 1) / kLocalSize),
                       static_cast<GLuint>((s.y + kLocalSize - 1) / kLocalSize), 1);

@@ -7,8 +7,21 @@
 #include "techniques/nichols/MinMaxPyramid.h"
 
 #include <functional>
+#include <string_view>
 
 namespace bounce::nichols {
+
+// How a cell that was not rendered at its level takes its value from the coarser levels (§3.2.5):
+// EmptyAware is the thesis's (a tent-weighted 3x3 of the neighbours that have data); Nearest copies the
+// parent cell (blocky); Bilinear interpolates the parent level at the cell centre with empty parents
+// counted as black (the naive filter §3.2.5 rejects: light bleeds into and out of empty cells). The
+// last two exist to show why the first is needed (settings `upsampling` of isr, hisr, multires-splat).
+enum class UpsampleFilter { EmptyAware = 0, Nearest = 1, Bilinear = 2 };
+inline constexpr std::string_view kUpsampleFilters[] = {"empty-aware", "nearest", "bilinear"};
+inline constexpr const char* kUpsampleFilterHelp =
+    "§3.2.5 reconstruction: empty-aware (thesis: tent-weighted 3x3 of the cells with data), nearest (parent "
+    "cell, blocky) or bilinear (naive: empty cells count as black; the artefact §3.2.5 avoids)";
+UpsampleFilter upsampleFilter(std::string_view name);
 
 class MultiresBuffer {
 public:
@@ -32,7 +45,7 @@ public:
     void bindAtlas();
     glm::ivec2 atlasSize() const { return m_atlasSize; }
     // Coarse-to-fine upsampling (§3.2.5) into result() level 0.
-    void upsample();
+    void upsample(UpsampleFilter filter = UpsampleFilter::EmptyAware);
 
     // One level at a time, for techniques that build the stencil of level k from what levels > k
     // computed (Nichols 2010 §5.3.4, incremental stencil rendering), coarsest first:
@@ -46,7 +59,7 @@ public:
     // upsampleLevel computes result() level k from the atlas level k and result() level k + 1; after
     // it, result() level k holds every covered cell of level k that has data. replaceInherited: a cell
     // rendered at k takes its rendered value only (else rendered + inherited, see upsample.comp).
-    void upsampleLevel(int level, bool replaceInherited = false);
+    void upsampleLevel(int level, bool replaceInherited = false, UpsampleFilter filter = UpsampleFilter::EmptyAware);
     const gl::Texture& depthStencil() const { return m_depthStencil; }
     // indirect = albedo / pi * result level 0, times Eq. 3.3's detail term when detailAlpha > 0.
     void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha = 0.0f);

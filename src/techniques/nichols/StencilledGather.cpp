@@ -33,10 +33,11 @@ std::vector<double> StencilledGather::gather(gl::Program& program, int batches,
     return m_buffer->drawStencilled(program, batches, setBatch);
 }
 
-void StencilledGather::finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments) {
+void StencilledGather::finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments,
+                              UpsampleFilter filter) {
     {
         auto s = ctx.timers.scope("upsample");
-        m_buffer->upsample();
+        m_buffer->upsample(filter);
         m_buffer->combine(ctx.gbuffer, indirect);
     }
     for (size_t k = 0; k < fragments.size(); ++k) ctx.counters[fmt::format("fragments/level-{}", k)] = fragments[k];

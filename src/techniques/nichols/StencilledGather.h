@@ -25,7 +25,8 @@ public:
     std::vector<double> gather(gl::Program& program, int batches = 1, const std::function<void(int)>& setBatch = {});
     // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance; sets the
     // counters "fragments/level-k" and "gatherFragments" from gather()'s result.
-    void finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments);
+    void finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments,
+                UpsampleFilter filter = UpsampleFilter::EmptyAware);
     // Writes zero indirect light (a scene without lights).
     void clear(const gl::Texture& indirect);
 
