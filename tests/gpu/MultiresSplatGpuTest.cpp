@@ -43,6 +43,22 @@ TEST_F(MultiresSplatGpuTest, IndirectLightIsCloseToTheEveryTexelGather) {
     EXPECT_LT(error, 0.20);
 }
 
+// splatPrimitive=quads (§3.4.1's comparison) covers the same atlas texel with two triangles: the same
+// fragments, so the same image to float rounding of the additive blend (1e-6 relative RMS; the order
+// of the blended fragments is the same), and it is not black.
+TEST_F(MultiresSplatGpuTest, QuadSplatsEqualPointSplats) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 48;
+    const Image points = renderIndirect(*scene, "multires-splat", {{"rsmSize", "64"}, {"vplGrid", "8"}}, kSize);
+    const Image quads =
+        renderIndirect(*scene, "multires-splat", {{"rsmSize", "64"}, {"vplGrid", "8"}, {"splatPrimitive", "quads"}}, kSize);
+    double sum = 0.0;
+    for (const glm::vec3& p : points.pixels()) sum += p.r + p.g + p.b;
+    EXPECT_GT(sum, 0.0);
+    EXPECT_LT(relativeRmsError(quads, points), 1e-6);
+}
+
 TEST_F(MultiresSplatGpuTest, DetailModulationScalesBetweenOneMinusAlphaAndOne) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());

@@ -11,9 +11,18 @@
 // Outputs: location 0 irradiance W/m^2; location 1 (u_glossy) glossy radiance W/(m^2 sr).
 #include "techniques/multires_splat/subsplat.glsl"
 uniform bool u_glossy;
+#ifdef SPLAT_QUADS  // splatPrimitive=quads: the flats come through splat_quad.geom
+flat in ivec4 g_subsplat;
+flat in int g_vpl;
+flat in float g_visibility;
+#define v_subsplat g_subsplat
+#define v_vpl g_vpl
+#define v_visibility g_visibility
+#else
 flat in ivec4 v_subsplat;
 flat in int v_vpl;
 flat in float v_visibility;
+#endif
 layout(location = 0) out vec4 o_irradiance;
 layout(location = 1) out vec4 o_glossy;
 void main() {

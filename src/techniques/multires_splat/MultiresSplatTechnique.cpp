@@ -69,6 +69,10 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
+    static constexpr std::string_view kPrimitives[] = {"points", "quads"};
+    v.field("splatPrimitive", m_splatPrimitive,
+            "subsplats drawn as points (thesis) or as one-texel quads through a geometry shader (§3.4.1's comparison; same image)",
+            kPrimitives);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2, metres (assumption)", 0.0f, 10.0f);
     v.field("detailModulation", m_detailModulation, "Eq. 3.3: modulate indirect light by alpha <V,N> + (1 - alpha) (§3.3.3)");
@@ -112,10 +116,19 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
                                               {GL_GEOMETRY_SHADER, "techniques/multires_splat/refine.geom"}},
                                              {},
                                              {"g_subsplat"}}));
-    BOUNCE_TRY(m_splat, gl::Program::build({"multiresSplat.splat",
-                                            {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
-                                             {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}},
-                                            m_visibility->defines()}));
+    {
+        // splatPrimitive=quads: a geometry shader turns each point into a one-texel quad (§3.4.1's
+        // comparison; same fragments, same image).
+        gl::ProgramDesc splat{"multiresSplat.splat",
+                              {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
+                               {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}},
+                              m_visibility->defines()};
+        if (m_splatPrimitive == "quads") {
+            splat.stages.push_back({GL_GEOMETRY_SHADER, "techniques/multires_splat/splat_quad.geom"});
+            splat.defines.emplace_back("SPLAT_QUADS", "1");
+        }
+        BOUNCE_TRY(m_splat, gl::Program::build(splat));
+    }
     m_feedback = gl::TransformFeedback::create("multiresSplat.feedback");
     m_written = gl::Query::create("multiresSplat.written", GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     return {};
