@@ -126,7 +126,7 @@ def machine_lines(records):
         text = f"{host.get('hostname', '?')}: {host.get('cpu', '?')}, {host.get('cores', '?')} cores"
         if gpu:
             text += f"; GPU {gpu.get('renderer', '?')} ({gpu.get('vendor', '?')}, OpenGL {gpu.get('version', '?')}, {gpu.get('platform', '?')})"
-        if r.get("kind") in ("render", "temporal"):
+        if r.get("kind") in ("render", "temporal") and gpu:
             lines.add(text)
     return sorted(lines)
 

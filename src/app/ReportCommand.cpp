@@ -39,8 +39,10 @@ int runReport(const ReportArgs& args) {
     if (out.extension() != ".html") return fail(fmt::format("--out {}: the report is an .html file", out.string()));
     const fs::path outDir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
     if (!fs::is_directory(outDir, ec)) return fail(fmt::format("--out {}: folder '{}' does not exist", out.string(), outDir.string()));
-    // The script reads itself from stdin ("python3 -"): nothing to install beside the binary.
-    const std::string command = fmt::format("python3 - {} {}", shellQuote(args.results), shellQuote(out.string()));
+    // The script reads itself from stdin ("python3 -"): nothing to install beside the binary. Debian's
+    // interpreter first: python3-matplotlib is installed for it, not for a pyenv or venv python3 on PATH.
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string command = fmt::format("{} - {} {}", python, shellQuote(args.results), shellQuote(out.string()));
     FILE* pipe = ::popen(command.c_str(), "w");
     if (!pipe) return fail(fmt::format("cannot run python3: {}", std::strerror(errno)));
     std::fputs(kReportScript, pipe);

@@ -382,12 +382,12 @@ json sceneSpecJson(const SceneSpec& s) { return {{"id", s.id}, {"source", s.sour
 
 void expand(Study& study) {
     std::vector<Job> stage1, stage2;
-    std::set<std::string> references;
+    std::map<std::string, json> references;  // id -> spec
     const auto referenceJob = [&](size_t scene, const ReferenceScope& scope, uint32_t frame) {
         ReferenceScope key = scope;
         key.component = Component::Full;  // the path tracer's image does not depend on the technique's component
         const std::string id = fmt::format("reference/{}/{}/f{:04}", study.scenes[scene].id, scopeName(key), frame);
-        if (references.insert(id).second) {
+        if (!references.count(id)) {
             Job j;
             j.kind = JobKind::Reference;
             j.id = id;
@@ -400,6 +400,7 @@ void expand(Study& study) {
             j.spec = {{"kind", "reference"}, {"scene", sceneSpecJson(study.scenes[scene])}, {"scope", scopeSpec},
                       {"size", {study.size.x, study.size.y}}, {"frame", frame}, {"spp", study.reference.spp},
                       {"timeLimit", study.reference.timeLimit}, {"seed", study.reference.seed}};
+            references[id] = j.spec;
             stage1.push_back(std::move(j));
         }
         return id;
@@ -428,7 +429,8 @@ void expand(Study& study) {
             compare.variant = v;
             compare.scope = var.scope;
             compare.inputs = {render.id, ref};
-            compare.spec = {{"kind", "compare"}, {"render", render.spec}, {"reference", ref},
+            // The inputs' specs, not just their ids: a new reference (seed, spp) makes the compare stale too.
+            compare.spec = {{"kind", "compare"}, {"render", render.spec}, {"reference", references[ref]},
                             {"component", std::string(componentName(var.scope.component))}};
             stage1.push_back(std::move(render));
             stage2.push_back(std::move(compare));
@@ -453,7 +455,8 @@ void expand(Study& study) {
                           {"settings", var.settings}, {"renderer", study.renderer}, {"size", {study.size.x, study.size.y}},
                           {"frames", t.frames}, {"startFrame", t.startFrame}, {"eventFrame", t.eventFrame},
                           {"threshold", t.threshold}, {"component", std::string(componentName(var.scope.component))},
-                          {"references", j.inputs}};
+                          {"references", json::array()}};
+                for (const std::string& ref : j.inputs) j.spec["references"].push_back(references[ref]);
                 stage2.push_back(std::move(j));
             }
     study.jobs = std::move(stage1);
