@@ -380,6 +380,9 @@ def main():
     for scene in scenes:
         scene_rows = [r for r in rows if r["scene"] == scene]
         page.append(f"<h2>Scene <code>{esc(scene)}</code></h2>")
+        measured = [r for r in scene_rows if r.get("relMse") is not None]
+        if measured:
+            page.append(img_tag(scatter_plot(scene, measured), f"{scene} error vs time", "plot"))
         grid = []
         for r in scene_rows:
             job = f"render/{scene}/{r['technique']}/{r['variant']}"
@@ -415,7 +418,6 @@ def main():
 
         measured = [r for r in scene_rows if r.get("relMse") is not None]
         if measured:
-            page.append(img_tag(scatter_plot(scene, measured), f"{scene} error vs time", "plot"))
             page.append(table(["technique", "variant", "frame ms", "relMSE", "relRMS", "SSIM", "FLIP LDR", "FLIP HDR", "PSNR"],
                               [[esc(r["technique"]), esc(r["variant"]), fmt(r.get("frame_ms")), fmt(r.get("relMse")),
                                 fmt(r.get("relRms")), fmt(r.get("ssim")), fmt(r.get("flipLdr")), fmt(r.get("flipHdr")),
