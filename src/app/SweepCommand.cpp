@@ -99,8 +99,10 @@ public:
         std::fflush(stderr);
         m_drawn = true;
     }
-    ~ProgressBar() {
+    ~ProgressBar() { finish(); }
+    void finish() {
         if (m_drawn) std::fputc('\n', stderr);
+        m_drawn = false;
     }
 
 private:
@@ -186,6 +188,7 @@ int runLocal(const Study& s, const SweepArgs& args) {
             bar.update(done, running.size(), failed.size());
         }
     }
+    bar.finish();
     size_t refused = 0;
     for (const Job& j : s.jobs) {
         auto text = readTextFile(study::recordPath(s, j));
