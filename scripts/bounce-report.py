@@ -256,7 +256,7 @@ button { margin: 0.3em 0; }
 """
 
 # The page's own checks (tests/study/report_chromium.py reads data-selftest): every image decoded
-# and laid out with a non-zero size, and no script error or console.error while loading.
+# completely and laid out with a non-zero size, and no script error or console.error while loading.
 SCRIPT = """
 window.bounceErrors = [];
 window.addEventListener('error', function (e) { window.bounceErrors.push(String(e.message || e)); }, true);
@@ -290,9 +290,20 @@ function bounceZoom(img) {
 }
 window.addEventListener('load', function () {
   var images = Array.prototype.slice.call(document.images);
+  // Every image is an opaque PNG: a truncated or corrupt one decodes partly (its size is in the
+  // header) and leaves its last rows transparent, so the last pixel must be opaque.
+  var canvas = document.createElement('canvas');
+  var context = canvas.getContext('2d', {willReadFrequently: true});
+  function complete(i) {
+    canvas.width = i.naturalWidth;
+    canvas.height = i.naturalHeight;
+    context.clearRect(0, 0, canvas.width, canvas.height);
+    context.drawImage(i, 0, 0);
+    return context.getImageData(canvas.width - 1, canvas.height - 1, 1, 1).data[3] === 255;
+  }
   var bad = images.filter(function (i) {
     var r = i.getBoundingClientRect();
-    return !(i.complete && i.naturalWidth > 0 && r.width > 0 && r.height > 0);
+    return !(i.complete && i.naturalWidth > 0 && r.width > 0 && r.height > 0 && complete(i));
   }).map(function (i) { return i.alt; });
   document.body.setAttribute('data-selftest', JSON.stringify({
     images: images.length, plots: document.querySelectorAll('img.plot').length, grids: document.querySelectorAll('img.cell').length,
