@@ -27,3 +27,11 @@ for s in $scenes; do
   done
 done
 echo "demo: images are in $(cd "$out" && pwd)/ ($(ls "$out"/*.png | wc -l) PNG files, run records beside them; $skipped pairs skipped)"
+
+# A small built-in study (scripts/demo-study.json, docs/studies.md): every technique with two settings
+# on three scenes at 64x64, compared with shared references, temporal metrics, then the report page.
+# About a minute on two cores; a rerun reuses the finished jobs.
+study_out="$out/study"
+"$bounce" sweep "$(dirname "$0")/demo-study.json" --out "$study_out" --jobs 2
+report=$("$bounce" report "$study_out")
+echo "demo: study report: $report (results.json and results.csv beside it)"

@@ -12,6 +12,10 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
+  # studies: `bounce sweep --emit parallel|slurm` (tested against a local single-node Slurm),
+  # `bounce report` (matplotlib plots) and its test in headless Chromium
+  parallel munge slurmctld slurmd slurm-client
+  python3 python3-matplotlib chromium
 )
 
 missing=()

@@ -27,6 +27,8 @@ int runCli(int argc, char** argv) {
     registerReferenceCommand(app, action);
     registerCompareCommand(app, action);
     registerPhotonMapCommand(app, action);
+    registerSweepCommand(app, action);
+    registerReportCommand(app, action);
     // CLI11 reports an unknown command as "a subcommand is required"; name it instead.
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];

@@ -18,6 +18,8 @@ void registerViewCommand(CLI::App& root, CommandAction& action);
 void registerReferenceCommand(CLI::App& root, CommandAction& action);
 void registerCompareCommand(CLI::App& root, CommandAction& action);
 void registerPhotonMapCommand(CLI::App& root, CommandAction& action);
+void registerSweepCommand(CLI::App& root, CommandAction& action);
+void registerReportCommand(CLI::App& root, CommandAction& action);
 
 int runCli(int argc, char** argv);
 

@@ -32,6 +32,10 @@ int runList(const ListOptions& o) {
             std::cout << "techniques (bounce render --technique NAME --set NAME=VALUE):\n";
             for (const TechniqueInfo& t : registeredTechniques()) {
                 std::cout << fmt::format("  {:<16} {} [{}]\n", t.name, t.summary, t.reference);
+                std::cout << fmt::format("    reference scope: --bounces {}{}{}, compared with its {} output\n",
+                                         t.scope.bounces < 0 ? "unbounded" : std::to_string(t.scope.bounces),
+                                         t.scope.indirectOnly ? " --indirect-only" : "",
+                                         t.scope.diffuseOnly ? " --diffuse-only" : "", componentName(t.scope.component));
                 auto technique = t.create();
                 printSettings(*technique, "");
             }

@@ -1,5 +1,7 @@
 #include "metrics/LightLeak.h"
 
+#include <glm/vector_relational.hpp>
+
 namespace bounce {
 namespace {
 
@@ -34,6 +36,16 @@ TwoRoomsMasks twoRoomsMasks(const Image& worldPositions, float wallHalfThickness
             const float px = worldPositions.at(x, y).r;
             m.dark.set(x, y, px > wallHalfThickness);
             m.lit.set(x, y, px < -wallHalfThickness);
+        }
+    return m;
+}
+
+PixelMask boxMask(const Image& worldPositions, const glm::vec3& lo, const glm::vec3& hi) {
+    PixelMask m(worldPositions.width(), worldPositions.height());
+    for (int y = 0; y < worldPositions.height(); ++y)
+        for (int x = 0; x < worldPositions.width(); ++x) {
+            const auto p = worldPositions.at(x, y);
+            m.set(x, y, glm::all(glm::greaterThan(p, lo)) && glm::all(glm::lessThan(p, hi)));
         }
     return m;
 }

@@ -20,4 +20,8 @@ struct TwoRoomsMasks {
 };
 TwoRoomsMasks twoRoomsMasks(const Image& worldPositions, float wallHalfThickness);
 
+// Pixels whose world position (RGB of `worldPositions`) lies strictly inside the box lo..hi: a
+// scene's declared leak regions (scene/Scene.h LeakRegions) as masks.
+PixelMask boxMask(const Image& worldPositions, const glm::vec3& lo, const glm::vec3& hi);
+
 }  // namespace bounce

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -166,6 +167,13 @@ struct Camera {
     glm::mat4 clipFromView(float aspect) const;  // OpenGL clip space, depth -1..1
 };
 
+// World-space boxes (open: points strictly inside) for the light-leak score (metrics/LightLeak.h):
+// in truth no light reaches the surfaces in the dark box; the lit box's mean luminance normalises.
+// Declared by scenes built to measure leaks (two-rooms); `bounce sweep` scores every technique on them.
+struct LeakRegions {
+    glm::vec3 darkMin{0.0f}, darkMax{0.0f}, litMin{0.0f}, litMax{0.0f};  // metres
+};
+
 struct Scene {
     std::string name;
     std::string source;  // file path, or "builtin:NAME"
@@ -178,6 +186,7 @@ struct Scene {
     float frameRate = 30.0f;  // frames per second of `bounce render --frames`
     // Default technique settings from the scene file, "technique.setting" -> value text.
     std::map<std::string, std::string> settings;
+    std::optional<LeakRegions> leakRegions;
 
     size_t triangleCount() const;
     bool hasEmissiveMaterials() const;

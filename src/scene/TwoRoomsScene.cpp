@@ -81,6 +81,11 @@ Expected<Scene> buildTwoRooms(const SceneParams& params) {
     light.intensity = kLightIntensity;
     s.lights.push_back(light);
 
+    // The rooms as metrics/LightLeak.h's twoRoomsMasks splits them: x beyond the shared wall's faces.
+    constexpr float kBeyond = 1e3f;  // metres: "everything on that side"
+    s.leakRegions = LeakRegions{{h, -kBeyond, -kBeyond}, {kBeyond, kBeyond, kBeyond},
+                                {-kBeyond, -kBeyond, -kBeyond}, {-h, kBeyond, kBeyond}};
+
     // Looking down from above, slightly over the dark room so the dark face of the shared wall is in view.
     // The camera stays inside the rooms' footprint, so every outer wall is seen from its front side.
     s.camera.position = glm::vec3(0.3f, 5.0f, 0.4f);  // metres

@@ -1,0 +1,375 @@
+// The four kinds of study job. Each writes its images first (atomically, one by one) and its record
+// last, so a job killed halfway leaves images without a record: not finished, redone on the next run.
+#include "app/SweepJobs.h"
+
+#include "app/Options.h"
+#include "app/RunRecord.h"
+#include "core/FileIo.h"
+#include "core/ImageIo.h"
+#include "gpu/Context.h"
+#include "metrics/ErrorMetrics.h"
+#include "metrics/FlickerMeter.h"
+#include "metrics/Heatmap.h"
+#include "metrics/LightLeak.h"
+#include "reference/ReferenceJob.h"
+#include "techniques/Pipeline.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <thread>
+
+namespace bounce::study {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path jobFolder(const Study& study, const Job& job) { return study.output / job.id; }
+fs::path recordPath(const Study& study, const Job& job) { return jobFolder(study, job) / "record.json"; }
+
+namespace {
+
+Expected<json> readRecord(const fs::path& path) {
+    BOUNCE_TRY(const std::string text, readTextFile(path));
+    try {
+        return json::parse(text);
+    } catch (const json::exception& e) {
+        return makeError("{}: {}", path.string(), e.what());
+    }
+}
+
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char buffer[32];
+    std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buffer;
+}
+
+json baseRecord(const Study& study, const Job& job, const std::string& status) {
+    return {{"job", job.id},   {"kind", jobKindName(job.kind)}, {"status", status}, {"study", study.name},
+            {"spec", job.spec}, {"host", hostJson()},            {"finished", utcNow()}};
+}
+
+Expected<void> writeRecord(const Study& study, const Job& job, const json& record) {
+    return writeTextFileAtomic(recordPath(study, job), record.dump(2) + "\n");
+}
+
+// One headless context per process, made on first use (reference and compare jobs need none).
+Expected<gl::Context*> context() {
+    static std::unique_ptr<gl::Context> ctx;
+    if (!ctx) {
+        BOUNCE_TRY(ctx, gl::Context::createHeadless());
+    }
+    return ctx.get();
+}
+
+struct Loaded {
+    Scene scene;
+    std::unique_ptr<Pipeline> pipeline;
+    render::RenderSettings renderSettings;
+    std::string refusal;  // non-empty: the technique cannot render this scene
+};
+
+// Scene, technique and pipeline of a render or temporal job. The study was checked, so settings
+// apply; Pipeline::create failing is the technique refusing the scene (a one-line reason).
+Expected<std::unique_ptr<Loaded>> load(const Study& study, const Job& job) {
+    auto out = std::make_unique<Loaded>();
+    const SceneSpec& spec = study.scenes[job.scene];
+    const Variant& variant = study.variants[*job.variant];
+    BOUNCE_TRY(out->scene, loadScene(spec.source, spec.params));
+    BOUNCE_TRY(auto technique, createTechnique(variant.technique));
+    std::vector<std::string> settings;
+    for (const auto& [k, v] : variant.settings) settings.push_back(k + "=" + v);
+    BOUNCE_TRY_VOID(applyAllSettings(out->scene, *technique, out->renderSettings, settings));
+    BOUNCE_TRY_VOID(context());
+    auto pipeline = Pipeline::create(out->scene, std::move(technique), study.size, out->renderSettings);
+    if (!pipeline) out->refusal = pipeline.error().message;
+    else out->pipeline = std::move(*pipeline);
+    return out;
+}
+
+ToneMap pngToneMap(const render::RenderSettings& r) {
+    ToneMap t;
+    t.exposureEv = r.exposure;
+    t.curve = *parseToneCurve(r.toneCurve);
+    return t;
+}
+
+json leakJson(const Expected<double>& score) {
+    if (score) return *score;
+    return {{"error", score.error().message}};
+}
+
+Expected<void> runRender(const Study& study, const Job& job) {
+    const fs::path folder = jobFolder(study, job);
+    BOUNCE_TRY(auto loaded, load(study, job));
+    if (!loaded->refusal.empty()) {
+        json record = baseRecord(study, job, "refused");
+        record["reason"] = loaded->refusal;
+        record["technique"] = study.variants[*job.variant].technique;
+        return writeRecord(study, job, record);
+    }
+    Pipeline& pipeline = *loaded->pipeline;
+    std::vector<FrameStats> frames;
+    for (int f = study.startFrame; f < study.startFrame + study.frames; ++f)
+        frames.push_back(pipeline.renderFrame(static_cast<uint32_t>(f)));
+    const ToneMap toneMap = pngToneMap(loaded->renderSettings);
+    json images = json::object();
+    std::map<Component, Image> outputs;
+    for (Component c : {Component::Full, Component::Direct, Component::Indirect}) {
+        const std::string name(componentName(c));
+        Image image = pipeline.readback(c);
+        BOUNCE_TRY_VOID(checkFinite(image, fmt::format("{} {} output", job.id, name)));
+        BOUNCE_TRY_VOID(writeImage(folder / (name + ".exr"), image, toneMap));
+        BOUNCE_TRY_VOID(writeImage(folder / (name + ".png"), image, toneMap));
+        images[name] = name + ".png";
+        outputs[c] = std::move(image);
+    }
+    json extra = {{"command", "sweep"}, {"frame_count", study.frames}, {"start_frame", study.startFrame}};
+    json record = renderRunRecord(loaded->scene, pipeline, frames, (*context())->info(), extra);
+    const json base = baseRecord(study, job, "ok");
+    for (const auto& [k, v] : base.items()) record[k] = v;
+    record["variant"] = study.variants[*job.variant].id;
+    record["scope"] = scopeJson(job.scope);
+    record["images"] = images;
+    if (const auto& regions = loaded->scene.leakRegions) {
+        // The masks come from this render's G-buffer positions: the pixels that see each room.
+        const Image positions = readTexture(pipeline.gbuffer().position());
+        const PixelMask dark = boxMask(positions, regions->darkMin, regions->darkMax);
+        const PixelMask lit = boxMask(positions, regions->litMin, regions->litMax);
+        Image masks(positions.width(), positions.height());
+        for (int y = 0; y < masks.height(); ++y)
+            for (int x = 0; x < masks.width(); ++x) masks.at(x, y) = {dark.inside(x, y) ? 1.0f : 0.0f, lit.inside(x, y) ? 1.0f : 0.0f, 0.0f};
+        BOUNCE_TRY_VOID(writeImage(folder / "leak-mask.png", masks, ToneMap{0.0f, ToneCurve::Clamp}));
+        record["leak"] = {{"full", leakJson(lightLeakScore(outputs[Component::Full], dark, lit))},
+                          {std::string(componentName(job.scope.component)),
+                           leakJson(lightLeakScore(outputs[job.scope.component], dark, lit))},
+                          {"darkPixels", dark.count()}, {"litPixels", lit.count()}, {"mask", "leak-mask.png"}};
+    }
+    return writeRecord(study, job, record);
+}
+
+Expected<void> runReference(const Study& study, const Job& job) {
+    const fs::path folder = jobFolder(study, job);
+    const SceneSpec& spec = study.scenes[job.scene];
+    BOUNCE_TRY(const Scene scene, loadScene(spec.source, spec.params));
+    ReferenceJob rj;
+    rj.scene = spec.source;
+    rj.sceneParams = spec.params;
+    rj.settings.width = study.size.x;
+    rj.settings.height = study.size.y;
+    rj.settings.samplesPerPixel = study.reference.spp;
+    rj.settings.bounces = job.scope.bounces < 0 ? PathTracerSettings::kUnbounded : job.scope.bounces;
+    rj.settings.indirectOnly = job.scope.indirectOnly;
+    rj.settings.diffuseOnly = job.scope.diffuseOnly;
+    rj.settings.seed = study.reference.seed;
+    rj.settings.timeLimitSeconds = study.reference.timeLimit;
+    rj.settings.threads = study.reference.threads;
+    rj.settings.frame = job.frame;
+    rj.output = folder / "image.exr";
+    BOUNCE_TRY(const PathTracerResult result, runReferenceJob(scene, rj));
+    BOUNCE_TRY_VOID(writeImage(folder / "image.png", result.radiance, ToneMap{}));
+    json record = json(referenceRunRecord(scene, rj, result));
+    record["output"]["path"] = "image.exr";  // relative: output folders are copied between machines
+    const json base = baseRecord(study, job, "ok");
+    for (const auto& [k, v] : base.items()) record[k] = v;
+    record["images"] = {{"image", "image.png"}};
+    return writeRecord(study, job, record);
+}
+
+Expected<Image> readExr(const fs::path& path) {
+    BOUNCE_TRY(Image image, readImage(path));
+    BOUNCE_TRY_VOID(checkFinite(image, path.string()));
+    return image;
+}
+
+Expected<json> finishedInput(const Study& study, const std::string& id) {
+    const Job* input = study.findJob(id);
+    if (!input) return makeError("input job '{}' is not in the study", id);
+    if (!jobFinished(study, *input))
+        return makeError("input job '{}' has not finished (run stage 1 first: its record {} is missing or stale)", id,
+                         recordPath(study, *input).string());
+    return readRecord(recordPath(study, *input));
+}
+
+Expected<void> runCompare(const Study& study, const Job& job) {
+    const fs::path folder = jobFolder(study, job);
+    BOUNCE_TRY(const json render, finishedInput(study, job.inputs[0]));
+    BOUNCE_TRY(const json reference, finishedInput(study, job.inputs[1]));
+    json record = baseRecord(study, job, "ok");
+    record["technique"] = study.variants[*job.variant].technique;
+    record["variant"] = study.variants[*job.variant].id;
+    record["scene"] = study.scenes[job.scene].id;
+    record["render"] = job.inputs[0];
+    record["reference"] = job.inputs[1];
+    record["scope"] = scopeJson(job.scope);
+    if (render.value("status", "") != "ok") {
+        record["status"] = "skipped";
+        record["reason"] = "render " + render.value("status", "?") + ": " + render.value("reason", "");
+        return writeRecord(study, job, record);
+    }
+    const std::string component(componentName(job.scope.component));
+    const fs::path renderFolder = study.output / job.inputs[0], referenceFolder = study.output / job.inputs[1];
+    BOUNCE_TRY(const Image test, readExr(renderFolder / (component + ".exr")));
+    BOUNCE_TRY(const Image ref, readExr(referenceFolder / "image.exr"));
+    CompareMaps maps;
+    BOUNCE_TRY(const ErrorMetrics metrics, compareImages(test, ref, CompareOptions{}, &maps));
+    BOUNCE_TRY_VOID(writeHeatmap(folder / "heatmap.png", maps.flipHdr, 0.0f, 1.0f));  // FLIP lies in [0, 1]
+    json m = toJson(metrics);
+    m["relRms"] = relativeRmsError(test, ref);
+    record["metrics"] = m;
+    record["component"] = component;
+    record["heatmap"] = {{"path", "heatmap.png"}, {"metric", "flip-hdr"}, {"low", 0.0}, {"high", 1.0}};
+    record["median_ms"] = render.value("median_ms", json::object());
+    if (render.contains("leak")) {
+        // The reference's own score on the same masks: its noise (and light it truly has) in the dark room.
+        BOUNCE_TRY(const Image masks, readImage(renderFolder / "leak-mask.png"));
+        PixelMask dark(masks.width(), masks.height()), lit(masks.width(), masks.height());
+        for (int y = 0; y < masks.height(); ++y)
+            for (int x = 0; x < masks.width(); ++x) {
+                dark.set(x, y, masks.at(x, y).r > 0.5f);
+                lit.set(x, y, masks.at(x, y).g > 0.5f);
+            }
+        json leak = render["leak"].value(component, json());
+        record["leak"] = {{"test", leak}, {"reference", leakJson(lightLeakScore(ref, dark, lit))}};
+    }
+    return writeRecord(study, job, record);
+}
+
+double meanLuminance(const Image& image) {
+    double sum = 0.0;
+    for (size_t i = 0; i < image.pixelCount(); ++i) {
+        const glm::vec3 c = image.data()[i];
+        sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;  // Rec. 709, as metrics/FlickerMeter
+    }
+    return image.pixelCount() ? sum / static_cast<double>(image.pixelCount()) : 0.0;
+}
+
+// Flicker of one pair of frames: FlickerMeter's definition over just these two (null when black).
+json pairFlicker(const Image& previous, const Image& current) {
+    FlickerMeter meter;
+    if (!meter.addFrame(previous) || !meter.addFrame(current)) return nullptr;
+    auto f = meter.flicker();
+    return f ? json(*f) : json(nullptr);
+}
+
+Expected<void> runTemporal(const Study& study, const Job& job) {
+    const TemporalSpec& t = study.temporal;
+    std::vector<Image> references;
+    for (const std::string& id : job.inputs) {
+        BOUNCE_TRY_VOID(finishedInput(study, id));
+        BOUNCE_TRY(Image ref, readExr(study.output / id / "image.exr"));
+        references.push_back(std::move(ref));
+    }
+    BOUNCE_TRY(auto loaded, load(study, job));
+    json record = baseRecord(study, job, "ok");
+    record["technique"] = study.variants[*job.variant].technique;
+    record["variant"] = study.variants[*job.variant].id;
+    record["scene"] = study.scenes[job.scene].id;
+    record["scope"] = scopeJson(job.scope);
+    if (!loaded->refusal.empty()) {
+        record["status"] = "refused";
+        record["reason"] = loaded->refusal;
+        return writeRecord(study, job, record);
+    }
+    Pipeline& pipeline = *loaded->pipeline;
+    std::vector<Image> images;
+    json frames = json::array();
+    FlickerMeter techniqueFlicker, referenceFlicker;
+    for (int i = 0; i < t.frames; ++i) {
+        const uint32_t frame = static_cast<uint32_t>(t.startFrame + i);
+        const FrameStats stats = pipeline.renderFrame(frame);
+        Image image = pipeline.readback(job.scope.component);
+        BOUNCE_TRY_VOID(checkFinite(image, fmt::format("{} frame {}", job.id, frame)));
+        BOUNCE_TRY_VOID(techniqueFlicker.addFrame(image));
+        BOUNCE_TRY_VOID(referenceFlicker.addFrame(references[static_cast<size_t>(i)]));
+        ErrorMetrics m;
+        CompareOptions options;
+        // Per frame only the cheap linear metrics: FLIP on every frame would cost more than the render.
+        const Image& ref = references[static_cast<size_t>(i)];
+        json f = {{"frame", frame}, {"time_s", stats.time}, {"gpu_ms", stats.passes.empty() ? 0.0 : stats.passes.front().milliseconds},
+                  {"cpu_ms", stats.cpuMilliseconds}, {"relRms", relativeRmsError(image, ref)},
+                  {"relMse", relativeSquaredErrorMap(image, ref).mean()}, {"meanLuminance", meanLuminance(image)},
+                  {"referenceMeanLuminance", meanLuminance(ref)}};
+        f["flicker"] = images.empty() ? json(nullptr) : pairFlicker(images.back(), image);
+        f["referenceFlicker"] = i == 0 ? json(nullptr) : pairFlicker(references[static_cast<size_t>(i) - 1], ref);
+        frames.push_back(f);
+        images.push_back(std::move(image));
+    }
+    // Convergence latency: the settled image is the technique's last frame (the scene holds still
+    // from eventFrame on); the latency is the first k with error < threshold on every frame from
+    // eventFrame + k on. If the frame before the last is still above the threshold, it did not settle.
+    const Image& settled = images.back();
+    const int event = t.eventFrame - t.startFrame;
+    int latency = -1;
+    for (int i = static_cast<int>(images.size()) - 1; i >= event; --i) {
+        const double e = relativeRmsError(images[static_cast<size_t>(i)], settled);
+        frames[static_cast<size_t>(i)]["errorToSettled"] = std::isfinite(e) ? json(e) : json(nullptr);
+        if (!(e < t.threshold)) break;
+        latency = i - event;
+    }
+    const bool settledInTime = images.size() >= 2 &&
+                               relativeRmsError(images[images.size() - 2], settled) < t.threshold;
+    auto tf = techniqueFlicker.flicker();
+    auto rf = referenceFlicker.flicker();
+    record["frames"] = frames;
+    record["flicker"] = tf ? json(*tf) : json(nullptr);
+    record["referenceFlicker"] = rf ? json(*rf) : json(nullptr);
+    record["convergence"] = {{"eventFrame", t.eventFrame},
+                             {"threshold", t.threshold},
+                             {"metric", "relRms to the last frame"},
+                             {"settled", settledInTime},
+                             {"latencyFrames", settledInTime && latency >= 0 ? json(latency) : json(nullptr)},
+                             {"latencySeconds", settledInTime && latency >= 0 ? json(latency / loaded->scene.frameRate) : json(nullptr)}};
+    record["gpu"] = gpuInfoJson((*context())->info());
+    return writeRecord(study, job, record);
+}
+
+}  // namespace
+
+json hostJson() {
+    char name[256] = {};
+    gethostname(name, sizeof name - 1);
+    std::string cpu;
+    std::ifstream info("/proc/cpuinfo");
+    for (std::string line; std::getline(info, line);)
+        if (line.rfind("model name", 0) == 0) {
+            cpu = line.substr(line.find(':') + 2);
+            break;
+        }
+    return {{"hostname", name}, {"cpu", cpu}, {"cores", std::thread::hardware_concurrency()}};
+}
+
+bool jobFinished(const Study& study, const Job& job) {
+    const fs::path path = recordPath(study, job);
+    std::error_code ec;
+    if (!fs::exists(path, ec)) return false;
+    auto record = readRecord(path);
+    return record && record->value("spec", json()) == job.spec && record->contains("status");
+}
+
+Expected<void> runJob(const Study& study, const Job& job) {
+    const fs::path folder = jobFolder(study, job);
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec) return makeError("{}: cannot create the folder: {}", folder.string(), ec.message());
+    // A stale record (the study changed) must not survive a run that then fails.
+    fs::remove(recordPath(study, job), ec);
+    switch (job.kind) {
+        case JobKind::Render: return runRender(study, job);
+        case JobKind::Reference: return runReference(study, job);
+        case JobKind::Compare: return runCompare(study, job);
+        case JobKind::Temporal: return runTemporal(study, job);
+    }
+    return makeError("unknown job kind");
+}
+
+}  // namespace bounce::study
