@@ -635,6 +635,16 @@ int runView(const ViewOptions& o) {
                                 {"a", a.technique}, {"b", bSource == BSource::Image ? bImageName : b.technique},
                                 {"component", componentName(static_cast<Component>(component))}};
             BOUNCE_TRY_VOID(writeTextFileAtomic(arg, j.dump(2) + "\n"));
+        } else if (v == "state") {
+            controller.apply(camera);
+            const glm::ivec2 rs = a.pipeline ? a.pipeline->size() : glm::ivec2(0);
+            nlohmann::json j = {{"frame", currentFrame()}, {"time", scene->timeOfFrame(currentFrame())}, {"playing", playing},
+                                {"speed", speed}, {"renderSize", {rs.x, rs.y}}, {"scale", scale},
+                                {"ab", kAbModeNames[static_cast<int>(abMode)]}, {"a", a.technique}, {"b", b.technique},
+                                {"view", a.view.empty() ? "image" : a.view}, {"pathKeys", path.keys.size()},
+                                {"bookmarks", bookmarks.size()},
+                                {"camera", {camera.position.x, camera.position.y, camera.position.z}}};
+            BOUNCE_TRY_VOID(writeTextFileAtomic(arg, j.dump(2) + "\n"));
         } else if (v == "quit") {
             quit = true;
         }

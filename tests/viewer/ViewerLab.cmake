@@ -2,7 +2,7 @@
 # (tests/viewer/lab.txt) switches techniques, moves the light, compares A/B side by side and as a
 # wipe with the heat map, records a two-key camera path, shows debug views and renders the background
 # reference; then `bounce render --camera-path` replays the path and this script checks the results.
-# Inputs: -DBOUNCE=... -DCHECK=bounce_image_check -DXVFB_RUN=... -DSCRIPT=lab.txt -DWORK=folder
+# Inputs: -DBOUNCE=... -DCHECK=bounce_image_check -DXVFB_RUN=... -DSCRIPT=lab.txt -DCONTROLS=controls.txt -DWORK=folder
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(failures 0)
@@ -24,6 +24,20 @@ run("viewer session" ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${BOUNCE} view --
     --size 880x560 --render-size 256x256 --script ${SCRIPT})
 run("replay" ${BOUNCE} render --scene cornell-box-dynamic --technique rsm --size 256x256
     --camera-path path.json --out replay_%04d.exr)
+
+# Animation, bookmarks, adaptive size: a 660x300 window leaves a 330x300 view beside the panel.
+run("viewer controls" ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${BOUNCE} view --scene cornell-box-dynamic
+    --size 660x300 --set viewer.frameBudgetMs=1 --set viewer.minScale=0.5 --script ${CONTROLS})
+# A script action that fails while running ends the viewer with one line naming the script line.
+file(WRITE ${WORK}/bad.txt "wait 1\ntechnique nope\n")
+execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${BOUNCE} view --scene cornell-box --size 320x240
+                --script bad.txt WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc ERROR_VARIABLE err)
+string(STRIP "${err}" err)
+if(rc EQUAL 0 OR NOT err MATCHES "^bounce view: bad.txt:2: technique: unknown technique 'nope'[^\n]*$")
+  message(SEND_ERROR "failing script action: expected exit 1 and one line naming bad.txt:2, got ${rc}: ${err}")
+else()
+  message(STATUS "ok: failing script action: ${err}")
+endif()
 
 foreach(f split-same.png split-ab.png viewer-split.png viewer-wipe-heatmap.png view-normal.png view-rsm-flux.png
           viewer-reference.png shot.exr reference.exr path.json metrics-ab.json replay_0000.exr replay_0004.exr replay_0008.exr)
@@ -74,6 +88,39 @@ if(NOT ab_relmse GREATER 0 OR NOT ab_flip GREATER 0)
 else()
   message(STATUS "ok: direct vs rsm relMSE ${ab_relmse} FLIP ${ab_flip}")
 endif()
+# Playing at speed 2 for 5 displayed frames advances 10 frames; step 3 then adds 3; time = frame / 30.
+function(expect_json file key expected)
+  file(READ ${WORK}/${file} json)
+  string(JSON value GET "${json}" ${ARGN})
+  if(NOT "${value}" STREQUAL "${expected}")
+    message(SEND_ERROR "${file} ${ARGN}: ${value}, expected ${expected}")
+  else()
+    message(STATUS "ok: ${file} ${ARGN} = ${value}")
+  endif()
+endfunction()
+expect_json(animation.json frame 10 frame)
+expect_json(animation.json playing OFF playing)
+expect_json(step.json frame 13 frame)
+# Every frame over a 1 ms budget: the scale falls to viewer.minScale and the internal size to half the
+# view, in multiples of 8 (330x300 -> 168x152), keeping the view's aspect.
+expect_json(adaptive.json scale 0.5 scale)
+expect_json(adaptive.json width 168 renderSize 0)
+expect_json(adaptive.json height 152 renderSize 1)
+# goto restored the bookmarked camera (the scene's, x = 0.278 m) after the orbit moved it.
+file(READ ${WORK}/adaptive.json json)
+string(JSON cam_x GET "${json}" camera 0)
+string(JSON cam_z GET "${json}" camera 2)
+if(cam_x LESS 0.2779 OR cam_x GREATER 0.2781 OR cam_z LESS -0.8001 OR cam_z GREATER -0.7999)
+  message(SEND_ERROR "goto start: camera at x ${cam_x}, z ${cam_z}; expected the bookmark's 0.278, -0.8")
+endif()
+file(READ ${WORK}/bookmarks.json json)
+string(JSON mark GET "${json}" bookmarks 0 name)
+if(NOT mark STREQUAL "start")
+  message(SEND_ERROR "bookmarks.json: first bookmark '${mark}', expected 'start'")
+endif()
+expect_json(overlap.json view photon-splat.overlap view)
+run("overlap view non-blank" ${CHECK} nonblank ${WORK}/view-overlap.png 0.01)
+
 if(failures GREATER 0)
   message(FATAL_ERROR "${failures} viewer checks failed")
 endif()

@@ -56,6 +56,7 @@ const std::vector<ScriptActionInfo>& scriptActions() {
         {"screenshot", 1, 1, "s", "FILE.png|exr: the view (PNG: as displayed; EXR: side A's radiance)", true},
         {"window-shot", 1, 1, "s", "FILE.png: the whole window, panel included", true},
         {"metrics", 1, 1, "s", "FILE.json: relMSE and FLIP of A against B now", true},
+        {"state", 1, 1, "s", "FILE.json: frame, time, render size, scale, A/B mode, path keys (for tests)", true},
         {"quit", 0, 0, "", "close the viewer", false},
     };
     return actions;
