@@ -258,7 +258,11 @@ int runView(const ViewOptions& o) {
     std::optional<glm::ivec2> fixedRenderSize;
     if (!o.renderSize.empty()) {
         auto rs = parseSize(o.renderSize);
-        if (!rs.ok()) return failCommand(cmd, "--render-size: " + rs.error().message);
+        if (!rs.ok()) {
+            std::string message = rs.error().message;  // parseSize names --size
+            if (message.rfind("--size", 0) == 0) message.replace(0, 6, "--render-size");
+            return failCommand(cmd, message);
+        }
         fixedRenderSize = *rs;
     }
     // --set viewer.NAME goes to the viewer's settings, the rest to the technique and renderer.
