@@ -1091,6 +1091,7 @@ int runView(const ViewOptions& o) {
                 for (const auto& p : passes)
                     if (p.name == "frame") peak = std::max(peak, p.milliseconds);
             ImDrawList* dl = ImGui::GetWindowDrawList();
+            dl->PushClipRect(origin, ImVec2(origin.x + width, origin.y + height), true);
             dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height), IM_COL32(30, 30, 30, 255));
             const float barWidth = width / static_cast<float>(std::max(viewer.graphFrames, 1));
             static const ImU32 palette[] = {IM_COL32(230, 159, 0, 255),  IM_COL32(86, 180, 233, 255),
@@ -1101,13 +1102,15 @@ int runView(const ViewOptions& o) {
                 float y = origin.y + height;
                 const float x = origin.x + static_cast<float>(i) * barWidth;
                 for (const auto& p : history[i]) {
-                    if (p.name == "frame") continue;
+                    // Top-level passes only: "frame" is their total and "rsm/gather" is inside "rsm".
+                    if (p.name == "frame" || p.name.find('/') != std::string::npos) continue;
                     auto [it, inserted] = passColours.try_emplace(p.name, palette[passColours.size() % std::size(palette)]);
                     const float h = static_cast<float>(p.milliseconds / peak) * height;
                     dl->AddRectFilled(ImVec2(x, y - h), ImVec2(x + std::max(barWidth - 1.0f, 1.0f), y), it->second);
                     y -= h;
                 }
             }
+            dl->PopClipRect();
             ImGui::Dummy(ImVec2(width, height));
             ImGui::TextDisabled("peak %.1f ms GPU over %zu frames", peak, history.size());
             for (const auto& p : a.stats.passes) {

@@ -20,8 +20,8 @@ function(run name)
 endfunction()
 
 # 256x256 internal size, fixed, so the captures have the size the replay renders at.
-run("viewer session" ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${BOUNCE} view --scene cornell-box-dynamic
-    --size 880x560 --render-size 256x256 --script ${SCRIPT})
+run("viewer session" ${XVFB_RUN} -a -s "-screen 0 1024x1024x24" ${BOUNCE} view --scene cornell-box-dynamic
+    --size 880x800 --render-size 256x256 --script ${SCRIPT})
 run("replay" ${BOUNCE} render --scene cornell-box-dynamic --technique rsm --size 256x256
     --camera-path path.json --out replay_%04d.exr)
 
