@@ -21,6 +21,7 @@
 #include "app/Options.h"
 #include "app/viewer/BackgroundReference.h"
 #include "app/viewer/ViewerScript.h"
+#include "app/viewer/ViewerSettings.h"
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 #include "core/ToneMap.h"
@@ -65,33 +66,6 @@ struct ViewOptions {
     std::string screenshotDir = ".";
     int quitAfter = 0;  // frames; 0 = run until the window closes (automated smoke tests use it)
     std::string screenshot;  // with quitAfter: PNG of the last displayed window
-};
-
-// The viewer's own settings (`--set viewer.NAME=VALUE`, and the panel's "viewer settings").
-struct ViewerSettings final : Configurable {
-    float frameBudgetMs = 250.0f;
-    float minScale = 0.25f;
-    int graphFrames = 120;
-    int metricsInterval = 10;
-    int referenceSpp = 64;
-    int referenceBounces = 1;
-    bool referenceIndirectOnly = false;
-    int referenceThreads = 1;
-    float heatmapOpacity = 0.7f;
-
-    void visitSettings(SettingsVisitor& v) override {
-        v.field("frameBudgetMs", frameBudgetMs,
-                "reduce the internal render size while a frame takes longer than this (CPU ms, GPU wait included); 0: never",
-                0.0f, 10000.0f);
-        v.field("minScale", minScale, "smallest internal size, as a fraction of the view", 0.05f, 1.0f);
-        v.field("graphFrames", graphFrames, "frames in the frame-time graph", 10, 1000);
-        v.field("metricsInterval", metricsInterval, "frames between A/B error updates (relMSE, FLIP on the CPU)", 1, 1000);
-        v.field("referenceSpp", referenceSpp, "samples per pixel of the background reference", 1, 1 << 20);
-        v.field("referenceBounces", referenceBounces, "indirect bounces of the background reference (-1: unbounded)", -1, 1024);
-        v.field("referenceIndirectOnly", referenceIndirectOnly, "background reference: indirect light only (compare with component indirect)");
-        v.field("referenceThreads", referenceThreads, "threads of the background reference (0: all; 1 keeps the viewer responsive on 2 cores)", 0, 256);
-        v.field("heatmapOpacity", heatmapOpacity, "opacity of the FLIP heat map over the image", 0.0f, 1.0f);
-    }
 };
 
 // ImGui widgets for any Configurable: the same declaration that drives --set and `bounce list`.
@@ -172,6 +146,7 @@ struct Side {
     bool rebuild = true;
     std::string view;          // debug view name; empty: the image (component)
     std::string settingView;   // the setting a setting-driven view changed (reset when leaving it)
+    glm::ivec2 builtSize{0};   // the size of the last (re)build, successful or not
 };
 
 Expected<std::unique_ptr<Technique>> makeTechnique(const Scene& scene, const std::string& name,
@@ -774,7 +749,9 @@ int runView(const ViewOptions& o) {
         }
         for (Side* side : {&a, &b}) {
             if (side == &b && (!showsB() || bSource != BSource::Technique)) continue;
-            if (!side->rebuild && side->pipeline && side->pipeline->size() == renderSize) continue;
+            // A failed build is retried only when something changes (settings, technique, size).
+            if (!side->rebuild && side->builtSize == renderSize) continue;
+            side->builtSize = renderSize;
             auto t = makeTechnique(*scene, side->technique, side->values);
             if (t.ok()) {
                 auto p = Pipeline::create(*scene, std::move(*t), renderSize, renderSettings);
