@@ -1,6 +1,7 @@
 // `bounce list`: techniques with their settings (name, type, default, range, doc), the shared
 // renderer settings, and the built-in scenes with their parameters.
 #include "app/Cli.h"
+#include "app/viewer/ViewerSettings.h"
 #include "render/RenderSettings.h"
 #include "scene/SceneLoader.h"
 #include "techniques/Registry.h"
@@ -42,6 +43,9 @@ int runList(const ListOptions& o) {
             std::cout << "renderer settings shared by every technique (--set renderer.NAME=VALUE):\n";
             render::RenderSettings r;
             printSettings(r, "renderer.");
+            std::cout << "viewer settings (bounce view --set viewer.NAME=VALUE):\n";
+            ViewerSettings v;
+            printSettings(v, "viewer.");
         }
     }
     if (o.scenes || all) {

@@ -5,6 +5,7 @@
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 #include "gpu/Context.h"
+#include "scene/CameraPath.h"
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
 
@@ -25,7 +26,51 @@ struct RenderOptions {
     std::string component = "full";
     std::string out;
     std::string stats;
+    std::string cameraPath;
 };
+
+// --camera-path: every frame of the path's time range, each written to the --out pattern. A failure
+// part way removes the frames already written, so a run leaves all of its frames or none.
+int renderCameraPath(const RenderOptions& o, Scene& scene, std::unique_ptr<Technique> technique,
+                     const render::RenderSettings& renderSettings, glm::ivec2 size, Component component) {
+    const std::string cmd = "render";
+    auto path = readCameraPath(o.cameraPath);
+    if (!path.ok()) return failCommand(cmd, "--camera-path " + path.error().message);
+    if (auto r = applyLightPoses(scene, path->lights); !r.ok()) return failCommand(cmd, "--camera-path " + o.cameraPath + ": " + r.error().message);
+    if (!path->scene.empty() && path->scene != scene.name)
+        spdlog::warn("camera path {} was recorded on scene '{}', replayed on '{}'", o.cameraPath, path->scene, scene.name);
+    auto context = gl::Context::createHeadless();
+    if (!context.ok()) return failCommand(cmd, context.error().message);
+    auto pipeline = Pipeline::create(scene, std::move(technique), size, renderSettings);
+    if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
+    ToneMap toneMap;
+    toneMap.exposureEv = renderSettings.exposure;
+    toneMap.curve = *parseToneCurve(renderSettings.toneCurve);
+    std::vector<std::string> written;
+    auto fail = [&](const std::string& message) {
+        for (const std::string& f : written) std::filesystem::remove(f);
+        return failCommand(cmd, message);
+    };
+    std::vector<FrameStats> frames;
+    const auto [first, last] = path->frameRange(scene.frameRate);
+    for (uint32_t f = first; f <= last; ++f) {
+        const Camera camera = path->evaluate(scene.timeOfFrame(f)).applyTo(scene.camera);
+        frames.push_back((*pipeline)->renderFrame(f, &camera));
+        const Image image = (*pipeline)->readback(component);
+        if (auto r = checkFinite(image, fmt::format("{} output of frame {}", o.technique, f)); !r.ok()) return fail(r.error().message);
+        const std::string file = *formatFramePattern(o.out, f);
+        if (auto r = writeImage(file, image, toneMap); !r.ok()) return fail(r.error().message);
+        written.push_back(file);
+    }
+    if (!o.stats.empty()) {
+        nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
+                                {"camera_path", o.cameraPath}, {"frame_count", frames.size()}, {"start_frame", first}};
+        const auto record = renderRunRecord(scene, **pipeline, frames, (*context)->info(), extra);
+        if (auto r = writeTextFileAtomic(o.stats, record.dump(2) + "\n"); !r.ok()) return fail(r.error().message);
+    }
+    spdlog::info("{} on {}: {} camera-path frames ({}..{}) written to {}", o.technique, scene.name, frames.size(), first, last, o.out);
+    return 0;
+}
 
 int runRender(const RenderOptions& o) {
     const std::string cmd = "render";
@@ -35,8 +80,17 @@ int runRender(const RenderOptions& o) {
     if (!component.ok()) return failCommand(cmd, "--component: " + component.error().message);
     if (o.frames < 1) return failCommand(cmd, fmt::format("--frames {} must be at least 1", o.frames));
     if (o.startFrame < 0) return failCommand(cmd, fmt::format("--start-frame {} must not be negative", o.startFrame));
-    if (auto f = imageFormatFor(o.out); !f.ok()) return failCommand(cmd, "--out " + f.error().message);
-    if (auto w = checkWritable(o.out); !w.ok()) return failCommand(cmd, "--out " + w.error().message);
+    // With --camera-path, --out is a pattern: check the first frame's name (same folder and format for all).
+    std::string firstOut = o.out;
+    if (!o.cameraPath.empty()) {
+        if (o.frames != 1 || o.startFrame != 0)
+            return failCommand(cmd, "--camera-path sets the frames (its key times); drop --frames and --start-frame");
+        auto name = formatFramePattern(o.out, 0);
+        if (!name.ok()) return failCommand(cmd, "--out " + name.error().message);
+        firstOut = *name;
+    }
+    if (auto f = imageFormatFor(firstOut); !f.ok()) return failCommand(cmd, "--out " + f.error().message);
+    if (auto w = checkWritable(firstOut); !w.ok()) return failCommand(cmd, "--out " + w.error().message);
     if (!o.stats.empty())
         if (auto w = checkWritable(o.stats); !w.ok()) return failCommand(cmd, "--stats " + w.error().message);
     auto technique = createTechnique(o.technique);
@@ -51,6 +105,7 @@ int runRender(const RenderOptions& o) {
     render::RenderSettings renderSettings;
     if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings); !r.ok())
         return failCommand(cmd, r.error().message);
+    if (!o.cameraPath.empty()) return renderCameraPath(o, *scene, std::move(*technique), renderSettings, *size, *component);
 
     auto context = gl::Context::createHeadless();
     if (!context.ok()) return failCommand(cmd, context.error().message);
@@ -97,6 +152,8 @@ void registerRenderCommand(CLI::App& root, CommandAction& action) {
     c->add_option("--set", options->settings, "setting name=value; renderer.NAME for shared passes (repeatable)");
     c->add_option("--component", options->component, "full, direct or indirect")->capture_default_str();
     c->add_option("--out", options->out, "output image (.exr linear radiance, .png tone-mapped)")->required();
+    c->add_option("--camera-path", options->cameraPath,
+                  "replay a camera path (JSON from `bounce view`) frame by frame; --out is then a pattern such as frame_%04d.png");
     c->add_option("--stats", options->stats, "run record (JSON): settings, GPU, per-pass timings, counters");
     c->callback([&action, options] { action = [options] { return runRender(*options); }; });
 }

@@ -131,6 +131,19 @@ const gl::Texture& Pipeline::output(Component c) const {
     return m_full;
 }
 
+std::vector<DebugView> Pipeline::debugViews() const {
+    std::vector<DebugView> views{
+        {"output.direct", &m_direct, DebugEncoding::Radiance},
+        {"output.indirect", &m_indirect, DebugEncoding::Radiance},
+        {"gbuffer.position", &m_gbuffer.position(), DebugEncoding::Position},
+        {"gbuffer.normal", &m_gbuffer.normal(), DebugEncoding::Normal},
+        {"gbuffer.albedo", &m_gbuffer.albedo(), DebugEncoding::Color},
+        {"gbuffer.emission", &m_gbuffer.emission(), DebugEncoding::Radiance},
+    };
+    m_technique->debugViews(views);
+    return views;
+}
+
 Image Pipeline::readback(Component c) const { return readTexture(output(c)); }
 
 Image readTexture(const gl::Texture& texture) {

@@ -32,6 +32,8 @@ public:
     FrameStats renderFrame(uint32_t frame, const Camera* cameraOverride = nullptr);
 
     const gl::Texture& output(Component c) const;
+    // The shared views (outputs, G-buffer channels) followed by the technique's (Technique::debugViews).
+    std::vector<DebugView> debugViews() const;
     Image readback(Component c) const;
 
     Technique& technique() { return *m_technique; }

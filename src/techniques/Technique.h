@@ -46,6 +46,27 @@ struct FrameContext {
     glm::ivec2 size{0};
 };
 
+// An intermediate result a technique exposes for inspection: the viewer lists them (registry-driven:
+// the Pipeline adds the shared ones, G-buffer channels and outputs, each technique its own) and shows
+// the selected one instead of the image. A view is either a texture (2D, or a layer of a 2D array)
+// with a rule for turning texels into colour, or a technique setting whose value makes the technique
+// draw the view into its indirect output itself (vct's voxels, photon-splat's overlap).
+enum class DebugEncoding {
+    Radiance,  // linear radiance, tone-mapped like the image
+    Normal,    // unit vectors, shown as 0.5 + 0.5 n
+    Position,  // world positions, shown as fract(p)
+    Color,     // values in [0, 1] shown as they are (albedo)
+    Scalar,    // the red channel / `scale`, through the heat-map colour ramp
+};
+
+struct DebugView {
+    std::string name;                     // "gbuffer.normal", "rsm.flux"
+    const gl::Texture* texture = nullptr;  // null for a setting-driven view
+    DebugEncoding encoding = DebugEncoding::Radiance;
+    float scale = 1.0f;                   // Scalar: the value shown at the top of the ramp; Radiance: a multiplier
+    std::string setting, value;           // setting-driven: set `setting` = `value`, show the indirect output
+};
+
 class Technique : public Configurable {
 public:
     ~Technique() override = default;
@@ -56,6 +77,8 @@ public:
     virtual void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) = 0;
     // True when renderIndirect also rewrites `ctx.direct` (it is then passed as writable).
     virtual bool ownsDirect() const { return false; }
+    // Appends this technique's debug views (valid after setup; textures are owned by the technique).
+    virtual void debugViews(std::vector<DebugView>& /*out*/) const {}
 };
 
 }  // namespace bounce

@@ -130,4 +130,35 @@ execute_process(COMMAND ${BOUNCE} reference --scene cornell-box --size 8x8 --spp
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "^reference: cornell-box 8x8, 2 spp in [0-9.]+ s \\([0-9.]+ M paths/s, [0-9.]+ M rays/s\\); noise [0-9.]+% per pixel, [0-9.]+% image mean; wrote .*ref.exr\n$")
   message(SEND_ERROR "reference summary line missing or malformed (${rc}): '${out}' ${err}")
+# bounce render --camera-path and bounce view --script: input checked before any rendering or window.
+set(frame0 ${WORK}/rp_0000.png)
+set(key "{\"time\": 0, \"position\": [0.278, 0.273, -0.8], \"target\": [0.278, 0.273, 0.2]}")
+file(WRITE ${WORK}/path.json "{\"format\": \"bounce-camera-path\", \"version\": 1, \"keys\": [${key}]}\n")
+expect_failure("camera path without a frame pattern" "needs exactly one %d" ${WORK}/cp.png
+               render --scene cornell-box --size 8x8 --camera-path ${WORK}/path.json --out ${WORK}/cp.png)
+expect_failure("camera path with --frames" "drop --frames" ${frame0}
+               render --scene cornell-box --size 8x8 --camera-path ${WORK}/path.json --frames 3 --out ${WORK}/rp_%04d.png)
+expect_failure("camera path missing" "nopath.json" ${frame0}
+               render --scene cornell-box --size 8x8 --camera-path ${WORK}/nopath.json --out ${WORK}/rp_%04d.png)
+file(WRITE ${WORK}/badpath.json "{\"format\": \"bounce-camera-path\", \"version\": 1, \"keys\": [{\"time\": 0}]}\n")
+expect_failure("camera path key without position" "badpath.json: key 0: 'position' is missing" ${frame0}
+               render --scene cornell-box --size 8x8 --camera-path ${WORK}/badpath.json --out ${WORK}/rp_%04d.png)
+file(WRITE ${WORK}/lightpath.json "{\"format\": \"bounce-camera-path\", \"version\": 1, \"keys\": [${key}],\n\"lights\": [{\"name\": \"lamp\", \"position\": [0, 0, 0], \"direction\": [0, -1, 0]}]}\n")
+expect_failure("camera path names a light the scene lacks" "light 'lamp' is not in scene" ${frame0}
+               render --scene cornell-box --size 8x8 --camera-path ${WORK}/lightpath.json --out ${WORK}/rp_%04d.png)
+file(WRITE ${WORK}/bad-script.txt "# comment\nab split\nfrobnicate 3\n")
+expect_failure("viewer script unknown action" "bad-script.txt:3: unknown action 'frobnicate'" ""
+               view --scene cornell-box --script ${WORK}/bad-script.txt)
+file(WRITE ${WORK}/bad-number.txt "wait many\n")
+expect_failure("viewer script bad number" "bad-number.txt:1: 'wait': argument 1 'many' is not a number" ""
+               view --scene cornell-box --script ${WORK}/bad-number.txt)
+file(WRITE ${WORK}/bad-count.txt "orbit 1 2\n")
+expect_failure("viewer script argument count" "'orbit' takes 3 argument(s)" "" view --scene cornell-box --script ${WORK}/bad-count.txt)
+expect_failure("viewer bad render size" "--render-size '0x3'" "" view --scene cornell-box --render-size 0x3)
+expect_failure("viewer unknown viewer setting" "unknown setting 'bogus'" "" view --scene cornell-box --set viewer.bogus=1)
+# A good replay writes every frame of the path (one key: frame 0 only).
+execute_process(COMMAND ${BOUNCE} render --scene cornell-box --size 8x8 --camera-path ${WORK}/path.json --out ${WORK}/rp_%04d.png
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${frame0} OR EXISTS ${WORK}/rp_0001.png)
+  message(SEND_ERROR "good camera-path replay failed (${rc}): ${err}")
 endif()

@@ -19,6 +19,9 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void debugViews(std::vector<DebugView>& out) const override {
+        if (m_rsm) m_rsm->debugViews(out);
+    }
 
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
     const nichols::MinMaxPyramid& eyePyramid() const { return m_eye->eye(); }

@@ -21,6 +21,10 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void debugViews(std::vector<DebugView>& out) const override {
+        if (m_rsm) m_rsm->debugViews(out);
+        if (m_buffer) out.push_back({"multires.atlas", &m_buffer->atlas(), DebugEncoding::Radiance});
+    }
 
     const nichols::MultiresBuffer& buffer() const { return *m_buffer; }
     const nichols::MinMaxPyramid& eyePyramid() const { return *m_eye; }

@@ -135,6 +135,13 @@ bool ReflectiveShadowMap::render(FrameContext& ctx, int size, bool equalSolidAng
     return true;
 }
 
+void ReflectiveShadowMap::debugViews(std::vector<DebugView>& out) const {
+    if (!m_position) return;
+    out.push_back({"rsm.position", &m_position, DebugEncoding::Position});
+    out.push_back({"rsm.normal", &m_normal, DebugEncoding::Normal});
+    out.push_back({"rsm.flux", &m_flux, DebugEncoding::Radiance, static_cast<float>(m_size) * static_cast<float>(m_size)});
+}
+
 glm::vec3 ReflectiveShadowMap::totalFlux() const {
     if (!m_valid) return glm::vec3(0.0f);
     std::vector<glm::vec4> texels(static_cast<size_t>(m_size) * m_size * m_layers);

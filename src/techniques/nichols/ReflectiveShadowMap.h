@@ -37,6 +37,9 @@ public:
     const gl::Texture& normal() const { return m_normal; }
     // rgb reflected flux Phi_t in W, a = 1 where covered.
     const gl::Texture& flux() const { return m_flux; }
+    // The viewer's debug views: rsm.position, rsm.normal, rsm.flux (flux scaled by the texel count so
+    // that a texel shows the power the whole map would reflect at its value).
+    void debugViews(std::vector<DebugView>& out) const;
     // Total reflected flux of the last render (W per channel; read back, for tests).
     glm::vec3 totalFlux() const;
 

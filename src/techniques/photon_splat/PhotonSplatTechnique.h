@@ -18,6 +18,12 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void debugViews(std::vector<DebugView>& out) const override {
+        if (m_rsm) m_rsm->debugViews(out);
+        for (size_t i = 1; i < kDebugViews.size(); ++i)
+            out.push_back({"photon-splat." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
+                           std::string(kDebugViews[i])});
+    }
 
     static constexpr std::array<std::string_view, 3> kFilters{"gaussian", "tent", "box"};
     static constexpr std::array<std::string_view, 2> kEstimates{"normalized", "flux"};

@@ -17,6 +17,9 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void debugViews(std::vector<DebugView>& out) const override {
+        if (m_rsm) m_rsm->debugViews(out);
+    }
 
     static constexpr std::array<std::string_view, 3> kModes{"full", "fixed", "matched"};
 

@@ -16,6 +16,11 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void debugViews(std::vector<DebugView>& out) const override {
+        for (size_t i = 1; i < kDebugViews.size(); ++i)
+            out.push_back({"vct." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
+                           std::string(kDebugViews[i])});
+    }
     // With coneShadows the pixel's direct light is shadowed by a cone per light (Eq. 6.3).
     bool ownsDirect() const override { return m_coneShadows; }
 
