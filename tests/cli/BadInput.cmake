@@ -130,6 +130,8 @@ execute_process(COMMAND ${BOUNCE} reference --scene cornell-box --size 8x8 --spp
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "^reference: cornell-box 8x8, 2 spp in [0-9.]+ s \\([0-9.]+ M paths/s, [0-9.]+ M rays/s\\); noise [0-9.]+% per pixel, [0-9.]+% image mean; wrote .*ref.exr\n$")
   message(SEND_ERROR "reference summary line missing or malformed (${rc}): '${out}' ${err}")
+endif()
+
 # bounce render --camera-path and bounce view --script: input checked before any rendering or window.
 set(frame0 ${WORK}/rp_0000.png)
 set(key "{\"time\": 0, \"position\": [0.278, 0.273, -0.8], \"target\": [0.278, 0.273, 0.2]}")
