@@ -58,6 +58,8 @@ endif()
 run("view non-blank" ${CHECK} nonblank ${WORK}/split-ab.png 0.02)
 run("debug view non-blank" ${CHECK} nonblank ${WORK}/view-normal.png 0.02)
 run("rsm flux view non-blank" ${CHECK} nonblank ${WORK}/view-rsm-flux.png 0.01)
+# The VPL points are drawn over the image (256 VPLs as 7-pixel dots change far more than 1e-4).
+run("vpl points drawn" ${CHECK} differ ${WORK}/view-vpl.png ${WORK}/view-image.png 1e-4 1e30)
 run("A = B: halves equal" ${CHECK} halves ${WORK}/split-same.png 0 0.001)
 run("direct | rsm: halves differ" ${CHECK} halves ${WORK}/split-ab.png 0.003 1)
 # Moving the light changes the image.
