@@ -383,6 +383,9 @@ int runView(const ViewOptions& o) {
             if (selectedObject >= 0) {
                 Object& obj = scene->objects[static_cast<size_t>(selectedObject)];
                 obj.transform = glm::translate(glm::mat4(1.0f), delta) * obj.transform;
+                // SceneGpu skips the upload when the time has not changed (a paused animation).
+                for (Side* side : {&a, &b})
+                    if (side->pipeline) side->pipeline->sceneGpu().invalidateObjects();
             }
         } else if (!scene->lights.empty()) {
             scene->lights[static_cast<size_t>(selectedLight)].position += delta;
@@ -562,7 +565,8 @@ int runView(const ViewOptions& o) {
         } else if (v == "select") {
             const size_t colon = arg.find(':');
             const std::string kind = arg.substr(0, colon);
-            const int index = colon == std::string::npos ? -1 : std::atoi(arg.c_str() + colon + 1);
+            int index = colon == std::string::npos ? -1 : std::atoi(arg.c_str() + colon + 1);
+            if (arg == "object" && !movableObjects.empty()) index = movableObjects.front();  // the first animated one
             if (kind == "light" && index >= 0 && index < static_cast<int>(scene->lights.size())) {
                 selectObject = false;
                 selectedLight = index;
