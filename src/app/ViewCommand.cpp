@@ -317,6 +317,8 @@ int runView(const ViewOptions& o) {
     auto display = gl::Program::build({"display", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                     {GL_FRAGMENT_SHADER, "app/display.frag"}}});
     if (!display.ok()) return failCommand(cmd, display.error().message);
+    auto points = gl::Program::build({"points", {{GL_VERTEX_SHADER, "app/points.vert"}, {GL_FRAGMENT_SHADER, "app/points.frag"}}});
+    if (!points.ok()) return failCommand(cmd, points.error().message);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -381,6 +383,9 @@ int runView(const ViewOptions& o) {
             if (selectedObject >= 0) {
                 Object& obj = scene->objects[static_cast<size_t>(selectedObject)];
                 obj.transform = glm::translate(glm::mat4(1.0f), delta) * obj.transform;
+                // SceneGpu skips the upload when the time has not changed (a paused animation).
+                for (Side* side : {&a, &b})
+                    if (side->pipeline) side->pipeline->sceneGpu().invalidateObjects();
             }
         } else if (!scene->lights.empty()) {
             scene->lights[static_cast<size_t>(selectedLight)].position += delta;
@@ -560,7 +565,8 @@ int runView(const ViewOptions& o) {
         } else if (v == "select") {
             const size_t colon = arg.find(':');
             const std::string kind = arg.substr(0, colon);
-            const int index = colon == std::string::npos ? -1 : std::atoi(arg.c_str() + colon + 1);
+            int index = colon == std::string::npos ? -1 : std::atoi(arg.c_str() + colon + 1);
+            if (arg == "object" && !movableObjects.empty()) index = movableObjects.front();  // the first animated one
             if (kind == "light" && index >= 0 && index < static_cast<int>(scene->lights.size())) {
                 selectObject = false;
                 selectedLight = index;
@@ -814,6 +820,7 @@ int runView(const ViewOptions& o) {
         int curve = static_cast<int>(parseToneCurve(renderSettings.toneCurve).ok() ? *parseToneCurve(renderSettings.toneCurve) : ToneCurve::Aces);
         auto drawSide = [&](Side& side, bool isB, Rect area, std::optional<Rect> scissor) -> Rect {
             const gl::Texture* texture = nullptr;
+            const gl::Texture* pointSource = nullptr;
             DebugEncoding encoding = DebugEncoding::Radiance;
             float viewScale = 1.0f;
             if (isB && bSource == BSource::Image) {
@@ -823,6 +830,10 @@ int runView(const ViewOptions& o) {
                 if (!side.view.empty())
                     for (const DebugView& v : side.pipeline->debugViews())
                         if (v.name == side.view) {
+                            if (v.encoding == DebugEncoding::Points) {
+                                pointSource = v.texture;  // drawn over the image
+                                break;
+                            }
                             if (v.texture) texture = v.texture;
                             else texture = &side.pipeline->output(Component::Indirect);
                             encoding = v.encoding;
@@ -850,6 +861,17 @@ int runView(const ViewOptions& o) {
             display->use();
             (*context)->bindEmptyVertexArray();
             glDrawArrays(GL_TRIANGLES, 0, 3);
+            if (pointSource && pointSource->desc().target == GL_TEXTURE_2D_ARRAY) {
+                const gl::TextureDesc& d = pointSource->desc();
+                pointSource->bind(BINDING_TEX_INPUT1);
+                points->set("u_gridSize", glm::ivec2(d.width, d.height));
+                points->set("u_clipFromWorld", render::cameraView(camera, side.pipeline->size()).clipFromWorld());
+                points->set("u_pointSize", 7.0f);
+                points->use();
+                glEnable(GL_PROGRAM_POINT_SIZE);
+                glDrawArrays(GL_POINTS, 0, d.width * d.height * d.depth);
+                glDisable(GL_PROGRAM_POINT_SIZE);
+            }
             glDisable(GL_SCISSOR_TEST);
             return r;
         };

@@ -19,6 +19,8 @@ public:
 
     // Re-evaluates animated objects and lights at time t (seconds) and uploads what changed.
     void update(float time);
+    // The next update() re-uploads every object even at the same time (the viewer moved one in place).
+    void invalidateObjects() { m_time = -1.0f; }
 
     const Scene& scene() const { return *m_scene; }
     float time() const { return m_time; }

@@ -57,6 +57,7 @@ enum class DebugEncoding {
     Position,  // world positions, shown as fract(p)
     Color,     // values in [0, 1] shown as they are (albedo)
     Scalar,    // the red channel / `scale`, through the heat-map colour ramp
+    Points,    // a 2D array of world positions (w > 0 valid), drawn as points over the image
 };
 
 struct DebugView {

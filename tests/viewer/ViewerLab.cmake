@@ -7,9 +7,16 @@ file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(failures 0)
 
+# xvfb-run sometimes fails to remove its temporary folder after the program ended (exit 5, "problem
+# while cleaning up temporary directory", seen once in five runs on this machine); the program's own
+# status is then lost, and the checks of its outputs below decide.
+set(xvfb_cleanup "xvfb-run: error: problem while cleaning up temporary directory")
 function(run name)
   execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
+  string(FIND "${err}" "${xvfb_cleanup}" cleanup)
+  if(rc EQUAL 5 AND NOT cleanup EQUAL -1)
+    message(WARNING "${name}: ${xvfb_cleanup}")
+  elseif(NOT rc EQUAL 0)
     message(SEND_ERROR "${name}: exit ${rc}\n${out}\n${err}")
     math(EXPR f "${failures} + 1")
     set(failures ${f} PARENT_SCOPE)
@@ -32,6 +39,7 @@ run("viewer controls" ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${BOUNCE} view -
 file(WRITE ${WORK}/bad.txt "wait 1\ntechnique nope\n")
 execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${BOUNCE} view --scene cornell-box --size 320x240
                 --script bad.txt WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc ERROR_VARIABLE err)
+string(REPLACE "${xvfb_cleanup}" "" err "${err}")
 string(STRIP "${err}" err)
 if(rc EQUAL 0 OR NOT err MATCHES "^bounce view: bad.txt:2: technique: unknown technique 'nope'[^\n]*$")
   message(SEND_ERROR "failing script action: expected exit 1 and one line naming bad.txt:2, got ${rc}: ${err}")
@@ -58,10 +66,14 @@ endif()
 run("view non-blank" ${CHECK} nonblank ${WORK}/split-ab.png 0.02)
 run("debug view non-blank" ${CHECK} nonblank ${WORK}/view-normal.png 0.02)
 run("rsm flux view non-blank" ${CHECK} nonblank ${WORK}/view-rsm-flux.png 0.01)
+# The VPL points are drawn over the image (256 VPLs as 7-pixel dots change far more than 1e-4).
+run("vpl points drawn" ${CHECK} differ ${WORK}/view-vpl.png ${WORK}/view-image.png 1e-4 1e30)
 run("A = B: halves equal" ${CHECK} halves ${WORK}/split-same.png 0 0.001)
 run("direct | rsm: halves differ" ${CHECK} halves ${WORK}/split-ab.png 0.003 1)
 # Moving the light changes the image.
 run("light moved" ${CHECK} differ ${WORK}/light-after.exr ${WORK}/light-before.exr 1e-4 1e30)
+# ...and so does moving the animated block.
+run("object moved" ${CHECK} differ ${WORK}/object-after.exr ${WORK}/light-after.exr 1e-4 1e30)
 # The replayed frames equal the viewer's frames at the key times: same GL implementation, the same
 # camera bit for bit (keys are exact), the same light positions, a stateless technique. llvmpipe is
 # deterministic (measured relMSE 0), so the tolerance (relMSE 1e-9) only allows for a float summation

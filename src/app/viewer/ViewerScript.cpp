@@ -40,7 +40,7 @@ const std::vector<ScriptActionInfo>& scriptActions() {
         {"pause", 0, 0, "", "stop the animation", false},
         {"step", 0, 1, "n", "[N]: advance N frames (default 1)", false},
         {"speed", 1, 1, "n", "X: animation frames per displayed frame", false},
-        {"select", 1, 1, "s", "light:I or object:I: what the arrow keys and ctrl-drag move", false},
+        {"select", 1, 1, "s", "light:I, object:I or object (the first animated one): what the arrow keys and ctrl-drag move", false},
         {"move", 3, 3, "nnn", "DX DY DZ: move the selected light or object (metres)", false},
         {"orbit", 3, 3, "nnn", "YAW PITCH DISTANCE: orbit camera about its target (degrees, degrees, metres)", false},
         {"bookmark", 1, 1, "s", "NAME: bookmark the camera", false},

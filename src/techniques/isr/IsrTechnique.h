@@ -21,6 +21,7 @@ public:
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
+        if (m_regular) m_regular->debugViews(out);
     }
 
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }

@@ -23,6 +23,7 @@ public:
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
+        if (m_vpls) m_vpls->debugViews(out);
         if (m_buffer) out.push_back({"multires.atlas", &m_buffer->atlas(), DebugEncoding::Radiance});
     }
 

@@ -35,6 +35,10 @@ public:
     const gl::Texture& normalTexture() const { return m_normal; }
     const gl::Texture& fluxTexture() const { return m_flux; }
     std::vector<VplRecord> download() const;
+    // The viewer's "vpl.points": the VPLs' positions as points over the image.
+    void debugViews(std::vector<DebugView>& out) const {
+        if (m_position) out.push_back({"vpl.points", &m_position, DebugEncoding::Points});
+    }
 
 private:
     gl::Program m_program;

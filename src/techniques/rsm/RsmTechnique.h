@@ -19,6 +19,7 @@ public:
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
+        if (m_vpls) m_vpls->debugViews(out);
     }
 
     const nichols::ReflectiveShadowMap& rsm() const { return *m_rsm; }
