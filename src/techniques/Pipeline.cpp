@@ -3,10 +3,12 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/Readbacks.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <chrono>
+#include <optional>
 
 namespace bounce {
 
@@ -66,6 +68,7 @@ FrameStats Pipeline::renderFrame(uint32_t frame, const Camera* cameraOverride) {
     FrameStats stats;
     stats.frame = frame;
     stats.time = m_scene.timeOfFrame(frame);
+    std::optional<gl::FramePath> framePath(std::in_place);  // the frame's submission: no waiting reads
     m_timers.beginFrame();
     m_sceneGpu.update(stats.time);
     const Camera camera = cameraOverride ? *cameraOverride : m_sceneGpu.camera();
@@ -114,6 +117,8 @@ FrameStats Pipeline::renderFrame(uint32_t frame, const Camera* cameraOverride) {
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    framePath.reset();
+    m_technique->collectCounters(stats.counters);
     stats.passes = m_timers.endFrame();
     glFinish();
     stats.cpuMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

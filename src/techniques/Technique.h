@@ -80,6 +80,13 @@ public:
     virtual bool ownsDirect() const { return false; }
     // Appends this technique's debug views (valid after setup; textures are owned by the technique).
     virtual void debugViews(std::vector<DebugView>& /*out*/) const {}
+    // Reads the counters that live on the GPU (query results, atomic counts) into `out`, after the frame's
+    // work is queued whole: renderIndirect runs inside a gl::FramePath and makes no read that waits for
+    // the GPU (gpu/Readbacks.h; tests/gpu/ReadbackGpuTest.cpp checks every registered technique).
+    virtual void collectCounters(Counters& /*out*/) {}
+    // Non-empty for a technique whose paper reads GPU results back in the middle of its frame (the
+    // reason, naming the paper's step); the readback test then reports those reads instead of failing.
+    virtual std::string_view frameReadbackReason() const { return {}; }
 };
 
 }  // namespace bounce

@@ -10,7 +10,9 @@
 // Host uniforms: u_origins[level] (atlas texel of each level's origin), u_atlasSize, u_perVpl,
 // u_minDistance2 and vpl_visibility.glsl's. Inputs: attribute 0 = ivec4 (level, x, y, VPL in mode A),
 // gl_InstanceID = VPL index (mode B); subsplat.glsl's and, with visibility, the voxel grid.
-// Outputs: point, level, cell, VPL, visibility; ray counters.
+// Outputs: point, level, cell, VPL, visibility; ray counters; subsplats per level (BINDING_SSBO_TECH1,
+// Table 3.1's counts: one count per list entry, so mode B counts instance 0 only), read by the host
+// after the frame is queued rather than by reading the list back on the frame's path (issue 18).
 #include "techniques/multires_splat/subsplat.glsl"
 #include "techniques/screen_voxels/vpl_visibility.glsl"
 layout(location = 0) in ivec4 a_subsplat;
@@ -20,7 +22,9 @@ uniform bool u_perVpl;
 flat out ivec4 v_subsplat;
 flat out int v_vpl;
 flat out float v_visibility;
+layout(std430, binding = BINDING_SSBO_TECH1) buffer LevelCountBlock { uint u_subsplatsPerLevel[]; };
 void main() {
+    if (u_perVpl || gl_InstanceID == 0) atomicAdd(u_subsplatsPerLevel[a_subsplat.x], 1u);
     v_subsplat = a_subsplat;
     v_vpl = u_perVpl ? a_subsplat.w : gl_InstanceID;
     v_visibility = 1.0;

@@ -55,7 +55,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace bounce {
 
@@ -331,8 +330,8 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
     const int coarsest = levels - 1;
     const bool incremental = m_visibility == "incremental" && !specular;
     const bool interleave = m_interleave && !specular;
-    counts.rendered.assign(static_cast<size_t>(levels), 0.0);
-    counts.tree.assign(static_cast<size_t>(levels), 0.0);
+    counts.rendered.assign(static_cast<size_t>(levels), -1);
+    counts.tree.assign(static_cast<size_t>(levels), -1);
     gl::Program& gather = specular ? m_gatherSpecular : m_gatherDiffuse;
     if (m_visibility != "none") m_voxels->bind();
     m_vpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
@@ -417,7 +416,6 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                     counts.tree[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 2, m_layers, setBatch);
                     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
                 }
-                counts.tree[static_cast<size_t>(k)] += counts.rendered[static_cast<size_t>(k)];
                 glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
             }
         }
@@ -470,6 +468,7 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     const float zero[4] = {0, 0, 0, 0};
     m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
     glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);
+    m_frameRan = false;
     m_stats.clearZero();
     if (m_visibility != "none") {
         auto s = ctx.timers.scope("voxelize");
@@ -502,9 +501,9 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
         buildLobePyramid(ctx);
     }
     m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
-    const PassCounts diffuse = renderMultires(ctx, *m_diffuse, false);
-    PassCounts spec;
-    if (specular) spec = renderMultires(ctx, *m_specularBuffer, true);
+    m_frameDiffuse = renderMultires(ctx, *m_diffuse, false);
+    m_frameSpecular = specular ? renderMultires(ctx, *m_specularBuffer, true) : PassCounts{};
+    m_frameRan = true;
     {
         auto s = ctx.timers.scope("final");
         m_finalFbo.attach(GL_COLOR_ATTACHMENT0, ctx.direct);
@@ -525,9 +524,12 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
 
+}
+
+void AreaLightTechnique::collectCounters(Counters& c) {
+    if (!m_frameRan) return;
     uint32_t stats[AL_STAT_COUNT] = {};
     m_stats.download(0, sizeof(stats), stats);
-    Counters& c = ctx.counters;
     c["vpls"] = m_vplCount;
     c["raysCast"] = stats[AL_STAT_RAYS_CAST];
     c["raysReused"] = stats[AL_STAT_RAYS_REUSED];
@@ -535,15 +537,23 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     c["lobeSampledCells"] = stats[AL_STAT_LOBE_SAMPLED];
     c["partiallyVisibleFraction"] =
         stats[AL_STAT_TREE_CELLS] > 0 ? double(stats[AL_STAT_PARTIAL_VPLS]) / (double(stats[AL_STAT_TREE_CELLS]) * m_vplCount) : 0.0;
-    for (size_t k = 0; k < diffuse.rendered.size(); ++k) {
+    const auto count = [](const nichols::MultiresBuffer& b, int ticket) { return ticket < 0 ? 0.0 : b.fragments(ticket); };
+    double diffuseTotal = 0.0, specularTotal = 0.0;
+    for (size_t k = 0; k < m_frameDiffuse.rendered.size(); ++k) {
         const glm::ivec2 s = m_diffuse->levelSize(static_cast<int>(k));
-        c[fmt::format("fragments/level-{}", k)] = diffuse.rendered[k];
-        c[fmt::format("renderedFraction/level-{}", k)] = diffuse.rendered[k] / (double(s.x) * s.y);
-        c[fmt::format("treeCells/level-{}", k)] = diffuse.tree[k];
+        const double rendered = count(*m_diffuse, m_frameDiffuse.rendered[k]);
+        c[fmt::format("fragments/level-{}", k)] = rendered;
+        c[fmt::format("renderedFraction/level-{}", k)] = rendered / (double(s.x) * s.y);
+        c[fmt::format("treeCells/level-{}", k)] = rendered + count(*m_diffuse, m_frameDiffuse.tree[k]);
+        diffuseTotal += rendered;
     }
-    for (size_t k = 0; k < spec.rendered.size(); ++k) c[fmt::format("specularFragments/level-{}", k)] = spec.rendered[k];
-    c["gatherFragments"] = std::accumulate(diffuse.rendered.begin(), diffuse.rendered.end(), 0.0);
-    c["specularFragments"] = std::accumulate(spec.rendered.begin(), spec.rendered.end(), 0.0);
+    for (size_t k = 0; k < m_frameSpecular.rendered.size(); ++k) {
+        const double rendered = count(*m_specularBuffer, m_frameSpecular.rendered[k]);
+        c[fmt::format("specularFragments/level-{}", k)] = rendered;
+        specularTotal += rendered;
+    }
+    c["gatherFragments"] = diffuseTotal;
+    c["specularFragments"] = specularTotal;
 }
 
 }  // namespace bounce

@@ -21,14 +21,17 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override;
     bool ownsDirect() const override { return true; }
 
     static constexpr std::array<std::string_view, 4> kVisibilityModes{"incremental", "brute", "none", "shadow-maps"};
 
 
 private:
+    // Fragment-count tickets per level (nichols::MultiresBuffer::fragments), read by collectCounters:
+    // rendered = cells shaded; tree = cells of the incremental tree pass (-1: none), plus the rendered.
     struct PassCounts {
-        std::vector<double> rendered, tree;
+        std::vector<int> rendered, tree;
     };
     void updateUniforms(FrameContext& ctx);
     void buildLobePyramid(FrameContext& ctx);
@@ -79,6 +82,8 @@ private:
     float m_peakRadiance = 0.0f;
     bool m_hasSpecularMaterials = false;
     glm::ivec2 m_size{0};
+    PassCounts m_frameDiffuse, m_frameSpecular;  // this frame's tickets, for collectCounters
+    bool m_frameRan = false;
 };
 
 }  // namespace bounce

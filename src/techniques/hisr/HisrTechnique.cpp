@@ -23,7 +23,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <numeric>
 
 namespace bounce {
 
@@ -76,6 +75,7 @@ int HisrTechnique::rootWalkIterations(int depth) const {
 void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     {
         auto s = ctx.timers.scope("rsm");
+        m_gathered = false;
         if (!m_rsm->render(ctx, m_rsmSize)) {
             m_eye->clear(indirect);
             return;
@@ -88,7 +88,6 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
     }
     m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
     m_visibility->build(ctx);
-    std::vector<double> fragments;
     {
         auto s = ctx.timers.scope("gather");
         m_light->geometry().bind(BINDING_TEX_INPUT0);
@@ -110,24 +109,29 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         const glm::ivec2 roots = m_light->levelSize(rootLevel);
         const int rootCount = roots.x * roots.y * m_light->layers();
         const int batches = (rootCount + rootsPerDraw - 1) / rootsPerDraw;
-        fragments = m_eye->gather(m_gather, batches, [&](int b) {
+        m_eye->gather(m_gather, batches, [&](int b) {
             m_gather.set("u_rootFirst", b * rootsPerDraw);
             m_gather.set("u_rootEnd", (b + 1) * rootsPerDraw);
         });
         ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
-    m_eye->finish(ctx, indirect, fragments, nichols::upsampleFilter(m_upsampling));
+    m_eye->finish(ctx, indirect, nichols::upsampleFilter(m_upsampling));
+    m_gathered = true;
+}
+
+void HisrTechnique::collectCounters(Counters& out) {
+    if (!m_gathered) return;
+    const double total = m_eye->collectCounters(out);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     // gather.frag's counters: visited nodes (low, high word) and its invocations over all draws.
     uint32_t counts[3] = {0, 0, 0};
     m_gatherCounts.download(0, sizeof(counts), counts);
     const double nodes = static_cast<double>((uint64_t{counts[1]} << 32) | counts[0]);
-    const double total = std::accumulate(fragments.begin(), fragments.end(), 0.0);
-    ctx.counters["nodesPerFragment"] = total > 0.0 ? nodes / total : 0.0;
+    out["nodesPerFragment"] = total > 0.0 ? nodes / total : 0.0;
     // = gatherFragments x gatherDraws when the stencil culls the gather (early fragment tests), more
     // when fragments the stencil rejects are shaded too (HisrGpuTest.StencilCullsTheGather).
-    ctx.counters["gatherInvocations"] = static_cast<double>(counts[2]);
-    m_visibility->report(ctx);
+    out["gatherInvocations"] = static_cast<double>(counts[2]);
+    m_visibility->collectCounters(out);
 }
 
 }  // namespace bounce

@@ -16,6 +16,7 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
     }
@@ -40,6 +41,7 @@ private:
     std::optional<nichols::StencilledGather> m_eye;
     gl::Program m_gather;
     gl::Buffer m_gatherCounts;
+    bool m_gathered = false;  // this frame ran the gather (collectCounters has counts to read)
 };
 
 }  // namespace bounce

@@ -75,19 +75,21 @@ Expected<void> IsrTechnique::setup(const SetupContext&) {
 void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     {
         auto s = ctx.timers.scope("rsm");
+        m_gathered = false;
         if (!m_rsm->render(ctx, m_rsmSize, m_equalSolidAngle)) {
             m_eye->clear(indirect);
-            ctx.counters["vpls"] = 0.0;
+            m_vplCount = 0;
             return;
         }
     }
     const gl::Buffer* vpls = nullptr;
+    int vplBound = 0;  // an upper bound of the VPLs in the cache; the GPU-side count (m_count) is exact
     {
         auto s = ctx.timers.scope("vpl-cache");
         if (m_vplMode == "regular") {
             m_regular->extract(*m_rsm, m_vplGrid);
-            m_vplCount = m_regular->count();
-            const uint32_t count = static_cast<uint32_t>(m_vplCount);
+            vplBound = m_regular->count();
+            const uint32_t count = static_cast<uint32_t>(vplBound);
             m_count.upload(0, sizeof(count), &count);
             vpls = &m_regular->buffer();
         } else {
@@ -111,15 +113,14 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
                               static_cast<GLuint>((fine.y + kLocalSize - 1) / kLocalSize),
                               static_cast<GLuint>(m_light->layers()));
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-            uint32_t count = 0;
-            m_count.download(0, sizeof(count), &count);
-            m_vplCount = static_cast<int>(count);
+            // The cluster count stays on the GPU (the gather reads it): the draws cover the capacity, and
+            // a draw past the count ends its loops at once. No readback on the frame's path (issue 18).
+            vplBound = static_cast<int>(capacity / sizeof(nichols::VplRecord));
             vpls = &m_clusterVpls;
         }
     }
     m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
     m_visibility->build(ctx);
-    std::vector<double> fragments;
     {
         auto s = ctx.timers.scope("gather");
         vpls->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
@@ -129,16 +130,28 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         // loop budget (gpu/ShaderLimits.h), so a million-VPL cache is gathered whole on llvmpipe too.
         const int vplsPerDraw =
             std::max(1, gl::kShaderLoopIterationBudget / 2 / (1 + m_visibility->loopIterationsPerTest()));
-        const int batches = std::max(1, (m_vplCount + vplsPerDraw - 1) / vplsPerDraw);
-        fragments = m_eye->gather(m_gather, batches, [&](int b) {
+        const int batches = std::max(1, (vplBound + vplsPerDraw - 1) / vplsPerDraw);
+        m_eye->gather(m_gather, batches, [&](int b) {
             m_gather.set("u_vplFirst", static_cast<unsigned>(b * vplsPerDraw));
             m_gather.set("u_vplEnd", static_cast<unsigned>((b + 1) * vplsPerDraw));
         });
         ctx.counters["gatherDraws"] = static_cast<double>(batches);
     }
-    m_eye->finish(ctx, indirect, fragments, nichols::upsampleFilter(m_upsampling));
-    m_visibility->report(ctx);
-    ctx.counters["vpls"] = static_cast<double>(m_vplCount);
+    m_eye->finish(ctx, indirect, nichols::upsampleFilter(m_upsampling));
+    m_gathered = true;
+}
+
+void IsrTechnique::collectCounters(Counters& out) {
+    if (!m_gathered) {
+        out["vpls"] = 0.0;
+        return;
+    }
+    uint32_t count = 0;
+    m_count.download(0, sizeof(count), &count);
+    m_vplCount = static_cast<int>(count);
+    out["vpls"] = static_cast<double>(m_vplCount);
+    m_eye->collectCounters(out);
+    m_visibility->collectCounters(out);
 }
 
 }  // namespace bounce

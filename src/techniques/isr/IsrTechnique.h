@@ -19,6 +19,7 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
         if (m_regular) m_regular->debugViews(out);
@@ -26,7 +27,7 @@ public:
 
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
     const nichols::MinMaxPyramid& eyePyramid() const { return m_eye->eye(); }
-    int vplCount() const { return m_vplCount; }
+    int vplCount() const { return m_vplCount; }  // as of the last collectCounters
 
     static constexpr std::array<std::string_view, 2> kVplModes{"clusters", "regular"};
 
@@ -50,6 +51,7 @@ private:
     gl::Program m_gather, m_clusters;
     gl::Buffer m_clusterVpls, m_count;
     int m_vplCount = 0;
+    bool m_gathered = false;  // this frame ran the gather (collectCounters has counts to read)
 };
 
 }  // namespace bounce

@@ -129,12 +129,14 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
         }
         BOUNCE_TRY(m_splat, gl::Program::build(splat));
     }
-    m_feedback = gl::TransformFeedback::create("multiresSplat.feedback");
-    m_written = gl::Query::create("multiresSplat.written", GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+    m_feedback[0] = gl::TransformFeedback::create("multiresSplat.feedback0");
+    m_feedback[1] = gl::TransformFeedback::create("multiresSplat.feedback1");
+    m_levelCounts = gl::Buffer::create("multiresSplat.levelCounts", kMaxLevels * sizeof(uint32_t));
     return {};
 }
 
 void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    m_frameVpls = -1;
     {
         auto s = ctx.timers.scope("rsm");
         if (!m_rsm->render(ctx, m_rsmSize)) {
@@ -176,10 +178,10 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             glEnableVertexArrayAttrib(m_vaos[i].id(), kSubsplatAttribute);
             glVertexArrayAttribIFormat(m_vaos[i].id(), kSubsplatAttribute, 4, GL_INT, 0);
             glVertexArrayAttribBinding(m_vaos[i].id(), kSubsplatAttribute, 0);
+            glTransformFeedbackBufferBase(m_feedback[i].id(), 0, m_lists[i].id());
         }
     }
-    std::vector<double> perLevel(static_cast<size_t>(levels), 0.0);
-    double subsplats = 0.0, splats = 0.0;
+    m_levelCounts.clearZero();
     {
         auto s = ctx.timers.scope("splat");
         m_buffer->begin(*m_eye);
@@ -196,7 +198,6 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     for (int first = 0; first < lists; first += batch) {
         const int n = std::min(batch, lists - first);
         int current = 0;
-        GLuint count = 0;
         {
             auto s = ctx.timers.scope("refine");
             const glm::ivec2 top = m_eye->levelSize(levels - 1);
@@ -205,7 +206,6 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                 for (int y = 0; y < top.y; ++y)
                     for (int x = 0; x < top.x; ++x) initial.emplace_back(levels - 1, x, y, perVpl ? l : 0);
             m_lists[0].upload(0, initial.size() * sizeof(glm::ivec4), initial.data());
-            count = static_cast<GLuint>(initial.size());
             m_eye->geometry().bind(BINDING_TEX_TECH0);
             m_eye->refine().bind(BINDING_TEX_TECH1);
             m_eye->normal().bind(BINDING_TEX_TECH2);
@@ -219,15 +219,12 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             // One pass per level (16^2 -> full resolution); the first pass also drops uncovered cells.
             for (int pass = 0; pass < levels; ++pass) {
                 const int next = 1 - current;
-                glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, m_feedback.id());
-                glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_lists[next].id());
+                glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, m_feedback[next].id());
                 m_vaos[current].bind();
-                glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, m_written.id());
                 glBeginTransformFeedback(GL_POINTS);
-                glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
+                if (pass == 0) glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(initial.size()));
+                else glDrawTransformFeedback(GL_POINTS, m_feedback[current].id());
                 glEndTransformFeedback();
-                glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-                glGetQueryObjectuiv(m_written.id(), GL_QUERY_RESULT, &count);
                 glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
                 current = next;
             }
@@ -260,19 +257,17 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             m_eye->normal().bind(BINDING_TEX_TECH2);
             ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_levelCounts.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
             m_splat.use();
             m_vaos[current].bind();
-            glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(count), perVpl ? 1 : vplCount);
+            glDrawTransformFeedbackInstanced(GL_POINTS, m_feedback[current].id(), perVpl ? 1 : vplCount);
             glDisable(GL_BLEND);
         }
-        // Subsplats per level (Table 3.1): read back the final list (16 bytes per subsplat).
-        std::vector<glm::ivec4> list(count);
-        if (count > 0) m_lists[current].download(0, list.size() * sizeof(glm::ivec4), list.data());
-        for (const glm::ivec4& sp : list)
-            if (sp.x >= 0 && sp.x < levels) perLevel[static_cast<size_t>(sp.x)] += 1.0;
-        subsplats += static_cast<double>(count);
-        splats += static_cast<double>(count) * (perVpl ? 1.0 : static_cast<double>(vplCount));
     }
+    m_frameVpls = vplCount;
+    m_frameLevels = levels;
+    m_framePixels = static_cast<double>(perList);
+    m_framePerVpl = perVpl;
     {
         auto s = ctx.timers.scope("upsample");
         m_buffer->upsample(nichols::upsampleFilter(m_upsampling));
@@ -297,13 +292,25 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             glDisable(GL_BLEND);
         }
     }
-    for (int k = 0; k < levels; ++k) ctx.counters[fmt::format("subsplats/level-{}", k)] = perLevel[static_cast<size_t>(k)];
-    ctx.counters["vpls"] = static_cast<double>(vplCount);
+}
+
+void MultiresSplatTechnique::collectCounters(Counters& out) {
+    if (m_frameVpls < 0) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    uint32_t perLevel[kMaxLevels] = {};
+    m_levelCounts.download(0, sizeof(perLevel), perLevel);
+    double subsplats = 0.0;
+    for (int k = 0; k < m_frameLevels; ++k) {
+        out[fmt::format("subsplats/level-{}", k)] = perLevel[k];
+        subsplats += perLevel[k];
+    }
+    const double splats = subsplats * (m_framePerVpl ? 1.0 : static_cast<double>(m_frameVpls));
+    out["vpls"] = static_cast<double>(m_frameVpls);
     // Mode B: entries of the shared list; mode A: the sum over the per-VPL lists (Table 3.1's count).
-    ctx.counters["subsplats"] = subsplats;
-    ctx.counters["splats"] = splats;  // subsplat-VPL pairs drawn
-    ctx.counters["fillFraction"] = splats / (static_cast<double>(vplCount) * static_cast<double>(perList));
-    m_visibility->report(ctx);
+    out["subsplats"] = subsplats;
+    out["splats"] = splats;  // subsplat-VPL pairs drawn
+    out["fillFraction"] = m_frameVpls > 0 ? splats / (static_cast<double>(m_frameVpls) * m_framePixels) : 0.0;
+    m_visibility->collectCounters(out);
 }
 
 }  // namespace bounce

@@ -21,6 +21,7 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
         if (m_vpls) m_vpls->debugViews(out);
@@ -67,9 +68,15 @@ private:
     gl::Framebuffer m_splatFbo, m_glossyFbo;  // mode A: both atlases (MRT); indirect target (glossy added)
     gl::Buffer m_lists[2];
     gl::VertexArray m_vaos[2];
-    gl::TransformFeedback m_feedback;
-    gl::Query m_written;
+    // One transform-feedback object per list buffer: a refine pass draws the previous pass's list with
+    // glDrawTransformFeedback (its count never leaves the GPU).
+    gl::TransformFeedback m_feedback[2];
+    gl::Buffer m_levelCounts;  // subsplats per level, counted by splat.vert
     size_t m_capacity = 0;
+    // For collectCounters: this frame's VPL count, levels, pixels per list and mode; vplCount < 0: no splat.
+    int m_frameVpls = -1, m_frameLevels = 0;
+    double m_framePixels = 0.0;
+    bool m_framePerVpl = false;
 };
 
 }  // namespace bounce

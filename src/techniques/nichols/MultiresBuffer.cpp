@@ -4,6 +4,8 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 
+#include <fmt/format.h>
+
 namespace bounce::nichols {
 
 namespace {
@@ -22,7 +24,6 @@ Expected<MultiresBuffer> MultiresBuffer::create() {
                                                  {GL_FRAGMENT_SHADER, "techniques/nichols/combine.frag"}}}));
     b.m_atlasFbo = gl::Framebuffer::create("nichols.atlas.fbo");
     b.m_combineFbo = gl::Framebuffer::create("nichols.combine.fbo");
-    b.m_query = gl::Query::create("nichols.fragments", GL_SAMPLES_PASSED);
     return b;
 }
 
@@ -66,6 +67,7 @@ void MultiresBuffer::begin(const std::vector<glm::ivec2>& levelSizes) {
     }
     m_sizes = sizes;
     m_origins = origins;
+    m_queriesUsed = 0;
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(m_atlasFbo.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfi(m_atlasFbo.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
@@ -100,11 +102,11 @@ void MultiresBuffer::stencilSetup(const MinMaxPyramid& pyramid) {
     glDisable(GL_STENCIL_TEST);
 }
 
-std::vector<double> MultiresBuffer::drawStencilled(gl::Program& program, int batches,
-                                                   const std::function<void(int)>& setBatch) {
-    std::vector<double> fragments(static_cast<size_t>(levels()), 0.0);
-    for (int k = 0; k < levels(); ++k) fragments[static_cast<size_t>(k)] = drawLevel(k, program, 1, batches, setBatch);
-    return fragments;
+std::vector<int> MultiresBuffer::drawStencilled(gl::Program& program, int batches,
+                                                const std::function<void(int)>& setBatch) {
+    std::vector<int> tickets(static_cast<size_t>(levels()), 0);
+    for (int k = 0; k < levels(); ++k) tickets[static_cast<size_t>(k)] = drawLevel(k, program, 1, batches, setBatch);
+    return tickets;
 }
 
 void MultiresBuffer::stencilLevel(int level, gl::Program& program, int ref) {
@@ -127,8 +129,12 @@ void MultiresBuffer::stencilLevel(int level, gl::Program& program, int ref) {
     glDisable(GL_STENCIL_TEST);
 }
 
-double MultiresBuffer::drawLevel(int level, gl::Program& program, int ref, int batches,
-                                 const std::function<void(int)>& setBatch) {
+int MultiresBuffer::drawLevel(int level, gl::Program& program, int ref, int batches,
+                              const std::function<void(int)>& setBatch) {
+    const int ticket = m_queriesUsed++;
+    if (ticket == static_cast<int>(m_queries.size()))
+        m_queries.push_back(gl::Query::create(fmt::format("nichols.fragments.{}", ticket), GL_SAMPLES_PASSED));
+    const GLuint query = m_queries[static_cast<size_t>(ticket)].id();
     m_atlasFbo.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
@@ -153,16 +159,21 @@ double MultiresBuffer::drawLevel(int level, gl::Program& program, int ref, int b
             program.use();
         }
         // Every batch shades the same stencilled fragments: count them once.
-        if (b == 0) glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
+        if (b == 0) glBeginQuery(GL_SAMPLES_PASSED, query);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         if (b == 0) glEndQuery(GL_SAMPLES_PASSED);
         // llvmpipe queues draws until a flush: one unit of work per batch, as a watchdog needs.
         if (batches > 1) glFlush();
     }
-    GLuint64 samples = 0;
-    glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &samples);
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
+    return ticket;
+}
+
+double MultiresBuffer::fragments(int ticket) const {
+    BOUNCE_CHECK(ticket >= 0 && ticket < m_queriesUsed, "fragment-count ticket {} of {} this frame", ticket, m_queriesUsed);
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(m_queries[static_cast<size_t>(ticket)].id(), GL_QUERY_RESULT, &samples);
     return static_cast<double>(samples);
 }
 

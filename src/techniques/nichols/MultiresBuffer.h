@@ -35,12 +35,13 @@ public:
     // Marks each covered pixel's cell at exactly one level in the stencil (ref 1).
     void stencilSetup(const MinMaxPyramid& pyramid);
     // Draws `program` (full-screen-triangle vertex stage) over every level's rectangle with the stencil
-    // test EQUAL 1; u_level and u_levelOrigin are set per level. Returns fragments per level.
+    // test EQUAL 1; u_level and u_levelOrigin are set per level. Returns one fragment-count ticket per
+    // level (see fragments()).
     // With batches > 1 each level is drawn `batches` times, setBatch(b) setting the program's uniforms
     // for batch b first; the batches' RGB add up (blending) and alpha stays the program's (the "rendered
     // here" flag) — how a long gather stays within the shader loop budget (gpu/ShaderLimits.h).
-    std::vector<double> drawStencilled(gl::Program& program, int batches = 1,
-                                       const std::function<void(int)>& setBatch = {});
+    std::vector<int> drawStencilled(gl::Program& program, int batches = 1,
+                                    const std::function<void(int)>& setBatch = {});
     // Binds the atlas framebuffer with the whole atlas as viewport (for point splatting, no stencil).
     void bindAtlas();
     glm::ivec2 atlasSize() const { return m_atlasSize; }
@@ -53,9 +54,13 @@ public:
     // u_level and u_levelOrigin set) does not discard, colour writes off, over level k's rectangle.
     void stencilLevel(int level, gl::Program& program, int ref);
     // drawLevel draws `program` over level k where the stencil equals `ref`, `batches` times with
-    // additive blending as drawStencilled does; returns the fragments that passed (counted once).
-    double drawLevel(int level, gl::Program& program, int ref, int batches = 1,
-                     const std::function<void(int)>& setBatch = {});
+    // additive blending as drawStencilled does; returns a ticket for the fragments that passed the
+    // stencil (counted once, over the first batch).
+    int drawLevel(int level, gl::Program& program, int ref, int batches = 1,
+                  const std::function<void(int)>& setBatch = {});
+    // The fragments counted under a ticket of this frame (since begin()). Waits for the GPU: call it
+    // after the frame's work is queued (Technique::collectCounters), not on the frame's path.
+    double fragments(int ticket) const;
     // upsampleLevel computes result() level k from the atlas level k and result() level k + 1; after
     // it, result() level k holds every covered cell of level k that has data. replaceInherited: a cell
     // rendered at k takes its rendered value only (else rendered + inherited, see upsample.comp).
@@ -76,7 +81,8 @@ private:
     gl::Program m_stencil, m_upsample, m_combine;
     gl::Texture m_atlas, m_depthStencil, m_result;
     gl::Framebuffer m_atlasFbo, m_combineFbo;
-    gl::Query m_query;
+    std::vector<gl::Query> m_queries;  // GL_SAMPLES_PASSED, one per drawLevel call of the frame
+    int m_queriesUsed = 0;
     std::vector<glm::ivec2> m_origins, m_sizes;
     glm::ivec2 m_atlasSize{0};
 };

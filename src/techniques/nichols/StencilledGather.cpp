@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include <numeric>
 
 namespace bounce::nichols {
 
@@ -22,29 +21,36 @@ void StencilledGather::prepare(FrameContext& ctx, int eyeCoarsest, const Pyramid
         m_eye->buildEye(ctx.gbuffer, eyeCoarsest, thresholds);
     }
     auto s = ctx.timers.scope("stencil-setup");
+    m_tickets.clear();
     m_buffer->begin(*m_eye);
     m_buffer->stencilSetup(*m_eye);
 }
 
-std::vector<double> StencilledGather::gather(gl::Program& program, int batches,
-                                             const std::function<void(int)>& setBatch) {
+void StencilledGather::gather(gl::Program& program, int batches, const std::function<void(int)>& setBatch) {
     m_eye->geometry().bind(BINDING_TEX_TECH0);
     m_eye->normal().bind(BINDING_TEX_TECH1);
-    return m_buffer->drawStencilled(program, batches, setBatch);
+    m_tickets = m_buffer->drawStencilled(program, batches, setBatch);
 }
 
-void StencilledGather::finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments,
-                              UpsampleFilter filter) {
-    {
-        auto s = ctx.timers.scope("upsample");
-        m_buffer->upsample(filter);
-        m_buffer->combine(ctx.gbuffer, indirect);
+void StencilledGather::finish(FrameContext& ctx, const gl::Texture& indirect, UpsampleFilter filter) {
+    auto s = ctx.timers.scope("upsample");
+    m_buffer->upsample(filter);
+    m_buffer->combine(ctx.gbuffer, indirect);
+}
+
+double StencilledGather::collectCounters(Counters& out) const {
+    double total = 0.0;
+    for (size_t k = 0; k < m_tickets.size(); ++k) {
+        const double f = m_buffer->fragments(m_tickets[k]);
+        out[fmt::format("fragments/level-{}", k)] = f;
+        total += f;
     }
-    for (size_t k = 0; k < fragments.size(); ++k) ctx.counters[fmt::format("fragments/level-{}", k)] = fragments[k];
-    ctx.counters["gatherFragments"] = std::accumulate(fragments.begin(), fragments.end(), 0.0);
+    if (!m_tickets.empty()) out["gatherFragments"] = total;
+    return total;
 }
 
 void StencilledGather::clear(const gl::Texture& indirect) {
+    m_tickets.clear();
     const float zero[4] = {0, 0, 0, 0};
     m_clearFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
     glClearNamedFramebufferfv(m_clearFbo.id(), GL_COLOR, 0, zero);

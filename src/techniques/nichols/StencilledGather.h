@@ -20,13 +20,14 @@ public:
     void prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds);
     // Draws `program` over the stencilled cells of every level, with the eye pyramid's geometry and
     // normal bound at BINDING_TEX_TECH0/1 (the patch each cell gathers for). The caller opens the
-    // "gather" timer and binds its light data first. Returns the fragments shaded per level.
-    // With batches > 1, as MultiresBuffer::drawStencilled: setBatch(b) sets batch b's uniforms.
-    std::vector<double> gather(gl::Program& program, int batches = 1, const std::function<void(int)>& setBatch = {});
-    // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance; sets the
-    // counters "fragments/level-k" and "gatherFragments" from gather()'s result.
-    void finish(FrameContext& ctx, const gl::Texture& indirect, const std::vector<double>& fragments,
-                UpsampleFilter filter = UpsampleFilter::EmptyAware);
+    // "gather" timer and binds its light data first. With batches > 1, as
+    // MultiresBuffer::drawStencilled: setBatch(b) sets batch b's uniforms.
+    void gather(gl::Program& program, int batches = 1, const std::function<void(int)>& setBatch = {});
+    // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance.
+    void finish(FrameContext& ctx, const gl::Texture& indirect, UpsampleFilter filter = UpsampleFilter::EmptyAware);
+    // After the frame is queued (Technique::collectCounters): the counters "fragments/level-k" and
+    // "gatherFragments" of the last gather(); returns gatherFragments (0 when nothing was gathered).
+    double collectCounters(Counters& out) const;
     // Writes zero indirect light (a scene without lights).
     void clear(const gl::Texture& indirect);
 
@@ -37,6 +38,7 @@ private:
     std::optional<MinMaxPyramid> m_eye;
     std::optional<MultiresBuffer> m_buffer;
     gl::Framebuffer m_clearFbo;
+    std::vector<int> m_tickets;  // the last gather's fragment counts per level (MultiresBuffer::fragments)
 };
 
 }  // namespace bounce::nichols

@@ -308,4 +308,11 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     }
 }
 
+std::string_view PhotonSplatTechnique::frameReadbackReason() const {
+    // injection=rays traces on the CPU from the scene alone; injection=rsm (the document's method B)
+    // reads the shared RSM's VPLs back as photons, because the bundles are built on the CPU (pass 3).
+    if (m_injection == "rsm") return "injection=rsm: the RSM's VPLs are read back as photons for the CPU's bundle pass";
+    return {};
+}
+
 }  // namespace bounce

@@ -18,6 +18,10 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     bool ownsDirect() const override { return true; }
+    std::string_view frameReadbackReason() const override {
+        return "van de Hoef (2013) FINDSHOOTINGQUAD: each quad's unshot power is read back for the CPU's "
+               "arg-max over the quads, the thesis's own CPU-GPU stall";
+    }
 
     static constexpr std::array<std::string_view, 2> kViews{"bilinear", "nearest"};
 

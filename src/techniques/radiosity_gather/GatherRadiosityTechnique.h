@@ -7,6 +7,7 @@ namespace bounce {
 class GatherRadiosityTechnique final : public RadiosityTechnique {
 public:
     std::string_view name() const override { return "radiosity-gather"; }
+    std::string_view frameReadbackReason() const override { return {}; }  // gathers: no shooter to select
     static constexpr std::array<std::string_view, 2> kIntegrations{"compute", "mipmap"};
 
 protected:

@@ -123,7 +123,6 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     ctx.counters["gatherDraws"] = static_cast<double>(draws);
     ctx.counters["vpls"] = static_cast<double>(m_vpls->count());
     ctx.counters["gatherFragments"] = static_cast<double>(ctx.size.x) * ctx.size.y;
-    m_visibility->report(ctx);
 }
 
 }  // namespace bounce

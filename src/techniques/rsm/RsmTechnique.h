@@ -17,6 +17,7 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override { m_visibility->collectCounters(out); }
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
         if (m_vpls) m_vpls->debugViews(out);

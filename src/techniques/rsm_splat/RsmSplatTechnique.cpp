@@ -50,6 +50,7 @@ void RsmSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& ind
     m_fbo.setDrawBuffers(1);
     BOUNCE_CHECK(m_fbo.complete(), "rsm-splat framebuffer");
     glClearNamedFramebufferfv(m_fbo.id(), GL_COLOR, 0, zero);
+    m_splatRadius = -1.0f;
     {
         auto s = ctx.timers.scope("rsm");
         if (!m_rsm->render(ctx, m_rsmSize)) return;
@@ -83,14 +84,21 @@ void RsmSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& ind
     glDrawArraysInstanced(GL_TRIANGLES, 0, kQuadVertices, m_vpls->count());
     glEndQuery(GL_SAMPLES_PASSED);
     glDisable(GL_BLEND);
+    m_splatRadius = radius;
+}
+
+void RsmSplatTechnique::collectCounters(Counters& out) {
+    if (m_splatRadius < 0.0f) return;
+    // Read after the frame is queued (no wait on the frame's path); matched mode's radius update
+    // steers the next frame's splats, as it did when read here mid-frame.
     GLuint64 fragments = 0;
     glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &fragments);
     const double perSplat = static_cast<double>(fragments) / std::max(m_vpls->count(), 1);
     if (m_mode == "matched" && perSplat > 0.0)
         m_matchedRadius *= static_cast<float>(std::sqrt(m_targetFragments / perSplat));
-    ctx.counters["vpls"] = static_cast<double>(m_vpls->count());
-    ctx.counters["fragmentsPerSplat"] = perSplat;
-    ctx.counters["splatRadius"] = radius;
+    out["vpls"] = static_cast<double>(m_vpls->count());
+    out["fragmentsPerSplat"] = perSplat;
+    out["splatRadius"] = m_splatRadius;
 }
 
 }  // namespace bounce

@@ -17,6 +17,7 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
         if (m_vpls) m_vpls->debugViews(out);
@@ -36,6 +37,7 @@ private:
     gl::Program m_splat;
     gl::Framebuffer m_fbo;
     gl::Query m_query;
+    float m_splatRadius = -1.0f;        // this frame's splat radius (metres; 0 = full screen), -1: no splat
 };
 
 }  // namespace bounce

@@ -85,13 +85,13 @@ int VplVisibility::loopIterationsPerTest() const {
     return 2 * m_settings.columns * (1 + wordsPerColumn) + 1;
 }
 
-void VplVisibility::report(FrameContext& ctx) const {
+void VplVisibility::collectCounters(Counters& out) const {
     if (!m_settings.enabled) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t r[4] = {0, 0, 0, 0};
     m_rays.download(0, sizeof(r), r);
-    ctx.counters["visibilityRays"] = static_cast<double>((uint64_t{r[1]} << 32) | r[0]);
-    ctx.counters["visibilityBlocked"] = static_cast<double>((uint64_t{r[3]} << 32) | r[2]);
+    out["visibilityRays"] = static_cast<double>((uint64_t{r[1]} << 32) | r[0]);
+    out["visibilityBlocked"] = static_cast<double>((uint64_t{r[3]} << 32) | r[2]);
 }
 
 }  // namespace bounce::voxels

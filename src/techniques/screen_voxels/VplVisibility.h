@@ -66,8 +66,9 @@ public:
     // off, counted as llvmpipe counts them: per SIMD vector of invocations (see the .cpp).
     int loopIterationsPerTest() const;
     // Counters "visibilityRays" (segments marched) and "visibilityBlocked" (of those, blocked), read
-    // back from the gather shaders' sums; nothing when off.
-    void report(FrameContext& ctx) const;
+    // back from the gather shaders' sums; nothing when off. Waits for the GPU: from the technique's
+    // collectCounters, after the frame is queued.
+    void collectCounters(Counters& out) const;
 
 private:
     VplVisibilitySettings m_settings;

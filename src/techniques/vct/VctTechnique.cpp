@@ -675,16 +675,22 @@ void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         const float zero[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(m_traceFbo.id(), GL_COLOR, 0, zero);
     }
-    // Counters (one small readback per frame: the thesis reports the same counts).
+    m_frameSparse = sparse;
+}
+
+void VctTechnique::collectCounters(Counters& out) {
+    // Counters (one small readback per frame, after the frame is queued: the thesis reports the same
+    // counts).
+    const bool sparse = m_frameSparse;
     uint32_t c[8];
     m_counters.download(0, sizeof(c), c);
-    ctx.counters["voxelWrites"] = c[0];
-    ctx.counters["trianglesPass1"] = c[1];
-    ctx.counters["trianglesPass2"] = c[2];
-    ctx.counters["resolution"] = m_resolution;
-    ctx.counters["radianceRange"] = m_uniforms.range.x;
-    ctx.counters["bytesPerVoxel"] = m_binary ? 1.0 : radianceBytesPerVoxel(m_storage);
-    ctx.counters["alphaBytesPerVoxel"] = (m_binary || storageId() == VCT_STORAGE_ISO) ? 0.0 : 4.0;
+    out["voxelWrites"] = c[0];
+    out["trianglesPass1"] = c[1];
+    out["trianglesPass2"] = c[2];
+    out["resolution"] = m_resolution;
+    out["radianceRange"] = m_uniforms.range.x;
+    out["bytesPerVoxel"] = m_binary ? 1.0 : radianceBytesPerVoxel(m_storage);
+    out["alphaBytesPerVoxel"] = (m_binary || storageId() == VCT_STORAGE_ISO) ? 0.0 : 4.0;
     if (sparse) {
         bool overflow = false;
         double active = 0.0;
@@ -692,17 +698,19 @@ void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             ListHead h;
             m_lists[l].buffer.download(0, sizeof(h), &h);
             if (h.count > m_lists[l].capacity) overflow = true;
-            if (l == 0) ctx.counters["activeVoxels"] = h.count;
+            if (l == 0) out["activeVoxels"] = h.count;
             active += h.count;
         }
-        ctx.counters["activeVoxelsAllLevels"] = active;
+        out["activeVoxelsAllLevels"] = active;
         if (overflow) {
-            spdlog::warn("vct: an active-voxel list overflowed; switching to dense mipmapping");
+            // Seen after the frame (no wait on its path): the next frame mipmaps densely; this one's
+            // mip levels missed the voxels past the list's capacity.
+            spdlog::warn("vct: an active-voxel list overflowed; switching to dense mipmapping from the next frame");
             m_sparseActive = false;
         }
-        ctx.counters["sparseOverflow"] = overflow ? 1.0 : 0.0;
+        out["sparseOverflow"] = overflow ? 1.0 : 0.0;
     }
-    ctx.counters["sparseMip"] = sparse ? 1.0 : 0.0;
+    out["sparseMip"] = sparse ? 1.0 : 0.0;
 }
 
 std::vector<uint8_t> VctTechnique::downloadOccupancy() const {

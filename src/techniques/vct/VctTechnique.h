@@ -16,6 +16,7 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         for (size_t i = 1; i < kDebugViews.size(); ++i)
             out.push_back({"vct." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
@@ -92,6 +93,7 @@ private:
 
     int m_levels = 1;
     bool m_sparseActive = false;  // sparse path on (off after an overflow of a list)
+    bool m_frameSparse = false;   // this frame mipmapped sparsely (collectCounters reads its lists)
     gpu::VctUniforms m_uniforms{};
     gl::Buffer m_ubo, m_counters, m_large;
     uint32_t m_largeCapacity = 0;
