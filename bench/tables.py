@@ -386,9 +386,35 @@ def summary_of(values):
     return {"min": values[0], "median": median, "max": values[-1], "n": n}
 
 
+def interactive_table(rec, path):
+    """Issue 18: frame times and fps at interactive sizes, this build beside the build before the issue."""
+    before = rec.get("before", {})
+    lines = [f"Raw record `{path}` (commit {rec['commit']}; before = commit {rec.get('beforeCommit', '—')}; {rec['date']}, "
+             f"{rec['machine']}, {rec['gpu']}); `{rec['command']}`: `{rec['scene']}`, default settings, default timers; "
+             "frame = the run record's per-frame wall time (renderFrame to the glFinish ending the frame), median over the "
+             f"frames after the first; both builds' sides interleaved, {rec['reps']} repetitions; ratio per repetition, "
+             "median (min–max). llvmpipe times are indicative.", "",
+             "| size | technique | frame ms (fps) | before | goal |", "|---|---|---|---|---|"]
+    goals = {"isr": "≥ 10 fps at 256²", "hisr": "≥ 10 fps at 256²"}
+    for size in map(str, rec["sizes"]):
+        for name, side in rec["after"][size]["sides"].items():
+            b = before.get(size, {}).get("sides", {}).get(name)
+            cell = lambda x: f"{x['frameMs']['median']:.1f} ({x['fps']:.1f})"
+            lines.append(f"| {size}² | `{name}` | {cell(side)} | {cell(b) if b else '—'} | {goals.get(name, '') if size == '256' else ''} |")
+    lines += ["", "| size | speed-up | measured | before | goal |", "|---|---|---|---|---|"]
+    rgoals = {"isr over rsm": "≥ 2×", "hisr over rsm": "≥ 2×", "multires-splat over rsm-splat": "> 1×",
+              "isr regular over rsm": "≥ 2× (same 256 VPLs)"}
+    for size in map(str, rec["sizes"]):
+        for key, r in rec["after"][size]["ratios"].items():
+            b = before.get(size, {}).get("ratios", {}).get(key)
+            lines.append(f"| {size}² | {key} | {ratio_cell(r)} | {ratio_cell(b) if b else '—'} | {rgoals.get(key, '')} |")
+    return "\n".join(lines)
+
+
 GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table,
               "area-light": area_light_table, "vpl-visibility": vpl_visibility_table,
-              "iir": iir_table, "nichols": nichols_table, "foundation": foundation_table}
+              "iir": iir_table, "nichols": nichols_table, "foundation": foundation_table,
+              "interactive": interactive_table}
 
 
 def main():

@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Issue 18: the multiresolution techniques where users run them. Frame times and fps of the Nichols
+techniques (and iir) on `cornell-box-dynamic` at 256^2 / 512^2 / 1024^2, each against the brute-force
+gather (`rsm`, the same 256 VPLs) and full-screen splatting (`rsm-splat`) in the same run; optionally the
+same for a build of the commit before the issue ("before" column).
+
+Usage: bench/interactive/run.py [BOUNCE] [--before BOUNCE_BEFORE] [--reps N] [--sizes 256,512,1024]
+       (defaults: build/src/app/bounce, no before build, 3 repetitions, 256,512,1024)
+
+A side is one `bounce render --stats` process with the default timers (GL timestamp queries: the mode
+a user runs); its frame time is the run record's per-frame wall time (`cpu_ms`: renderFrame from its
+first call to the glFinish that ends the frame), median over the frames after the first (which compiles
+shaders), at 10 frames for 256^2 and 4 above. Every repetition runs every side once, in the same order
+(A B C ... A B C ...): a ratio is formed per repetition and reported as min / median / max with the
+count. Counts behind the ratios (VPLs, gathered fragments, splats) come from the same records.
+At 256^2 a second pass runs every technique once with `renderer.timing=finish` (a glFinish at every
+pass boundary: each pass's own wall-clock cost on llvmpipe, which otherwise charges deferred work to
+later passes) for the per-pass table.
+The raw record goes to bench/results/interactive-<date>.json; bench/tables.py makes the README table.
+"""
+import os
+import statistics
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+from cli import ROOT, counter_mean, later, option, render, summary  # noqa: E402
+from record import new_record, write_record  # noqa: E402
+
+SCENE = "cornell-box-dynamic"
+# side name -> (technique, settings); `rsm` and `isr regular` gather the same 16^2 regular VPLs.
+SIDES = {
+    "rsm": ("rsm", {}),
+    "rsm-splat": ("rsm-splat", {}),
+    "isr": ("isr", {}),
+    "isr regular": ("isr", {"isr.vplMode": "regular"}),
+    "hisr": ("hisr", {}),
+    "multires-splat": ("multires-splat", {}),
+    "iir": ("iir", {}),
+}
+COUNTERS = ["vpls", "gatherFragments", "splats", "subsplats", "nodesPerFragment", "vplShadowMaps"]
+# ratio name -> (numerator side, denominator side): the speed-up of the denominator over the numerator.
+RATIOS = {
+    "isr over rsm": ("rsm", "isr"),
+    "isr regular over rsm": ("rsm", "isr regular"),
+    "hisr over rsm": ("rsm", "hisr"),
+    "multires-splat over rsm-splat": ("rsm-splat", "multires-splat"),
+    "multires-splat over isr regular (R1)": ("multires-splat", "isr regular"),
+}
+
+
+def frame_ms(record):
+    return statistics.median(f["cpu_ms"] for f in later(record))
+
+
+def measure(builds, sizes, reps):
+    """builds: label -> bounce binary. Every repetition runs every side of every build once (interleaved)."""
+    out = {label: {} for label in builds}
+    for size in sizes:
+        frames = 10 if size <= 256 else 4
+        times = {(label, name): [] for label in builds for name in SIDES}
+        counts, commands = {}, {}
+        for _ in range(reps):
+            for label, bounce in builds.items():
+                for name, (technique, settings) in SIDES.items():
+                    r, cmd = render(bounce, SCENE, technique, size, frames, settings)
+                    times[(label, name)].append(frame_ms(r))
+                    counts[(label, name)] = {c: counter_mean(r, c) for c in COUNTERS
+                                             if any(c in f["counters"] for f in later(r))}
+                    commands[(label, name)] = cmd
+        for label in builds:
+            sides = {}
+            for name in SIDES:
+                s = summary(times[(label, name)])
+                sides[name] = {"frameMs": s, "fps": 1000.0 / s["median"], "counts": counts[(label, name)],
+                               "command": commands[(label, name)]}
+            ratios = {}
+            for key, (a, b) in RATIOS.items():
+                ratios[key] = summary(times[(label, a)][i] / times[(label, b)][i] for i in range(reps))
+            out[label][str(size)] = {"frames": frames, "sides": sides, "ratios": ratios}
+    return out
+
+
+def passes(bounce, size):
+    out = {}
+    for name, (technique, settings) in SIDES.items():
+        r, cmd = render(bounce, SCENE, technique, size, 6, {**settings, "renderer.timing": "finish"})
+        scopes = sorted({k for f in later(r) for k in f["gpu_ms"]})
+        out[name] = {"command": cmd, "passMs": {k: statistics.median(f["gpu_ms"].get(k, 0.0) for f in later(r)) for k in scopes}}
+    return out
+
+
+def main():
+    args = sys.argv[1:]
+    reps = option(args, "--reps", 3)
+    sizes = [int(s) for s in option(args, "--sizes", "256,512,1024", str).split(",")]
+    before = option(args, "--before", "", str)
+    bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
+    command = f"bench/interactive/run.py --reps {reps} --sizes {','.join(map(str, sizes))}"
+    if before:
+        command += " --before BEFORE"
+    rec = new_record("interactive", command, bounce)
+    rec.update({"scene": SCENE, "reps": reps, "sizes": sizes, "timing": "queries (frame = run record cpu_ms)"})
+    builds = {"after": bounce}
+    if before:
+        import subprocess
+        b = os.path.abspath(before)
+        rec["beforeCommit"] = subprocess.run(["git", "-C", os.path.dirname(b), "rev-parse", "--short", "HEAD"],
+                                             capture_output=True, text=True).stdout.strip()
+        builds["before"] = b
+    rec.update(measure(builds, sizes, reps))
+    rec["passes256"] = passes(bounce, 256) if 256 in sizes else {}
+    print(write_record(rec))
+
+
+if __name__ == "__main__":
+    main()
