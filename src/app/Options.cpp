@@ -1,5 +1,6 @@
 #include "app/Options.h"
 
+#include "core/ImageIo.h"
 #include "techniques/Registry.h"
 
 #include <charconv>
@@ -16,7 +17,7 @@ Expected<glm::ivec2> parseSize(const std::string& text) {
     if (x == std::string::npos || !number(std::string_view(text).substr(0, x), size.x) ||
         !number(std::string_view(text).substr(x + 1), size.y))
         return makeError("--size '{}' is not of the form WIDTHxHEIGHT (e.g. 512x512)", text);
-    constexpr int kMaxSide = 16384;  // beyond any GL implementation's texture limit
+    constexpr int kMaxSide = kMaxImageSide;
     if (size.x < 1 || size.y < 1 || size.x > kMaxSide || size.y > kMaxSide)
         return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxSide);
     return size;

@@ -1,5 +1,7 @@
 #include "scene/JsonSceneLoader.h"
 
+#include "core/FileIo.h"
+
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "scene/AreaTexture.h"
@@ -606,11 +608,7 @@ private:
 }  // namespace
 
 Expected<Scene> loadJsonScene(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return makeError("{}: cannot open scene file", path.string());
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    BOUNCE_TRY(const std::string text, readTextFile(path));
     json root;
     try {
         root = json::parse(text);
