@@ -30,6 +30,8 @@
 #include "gpu/ShaderLimits.h"
 
 #include <algorithm>
+#include <cstring>
+#include <vector>
 
 namespace bounce {
 
@@ -114,6 +116,18 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             uint32_t count = 0;
             m_count.download(0, sizeof(count), &count);
             m_vplCount = static_cast<int>(count);
+            // The atomic append orders the cache by the GPU's thread scheduling and the gather sums it
+            // in that order; float addition is not associative, so the image changed in its last bits
+            // between runs. Sorted by their bytes (a total order), the VPLs, and so the image, depend on
+            // the scene alone (docs/techniques/isr.md, docs/reliability.md "Determinism").
+            if (count > 1) {
+                std::vector<nichols::VplRecord> records(count);
+                m_clusterVpls.download(0, records.size() * sizeof(nichols::VplRecord), records.data());
+                std::sort(records.begin(), records.end(), [](const nichols::VplRecord& a, const nichols::VplRecord& b) {
+                    return std::memcmp(&a, &b, sizeof a) < 0;
+                });
+                m_clusterVpls.upload(0, records.size() * sizeof(nichols::VplRecord), records.data());
+            }
             vpls = &m_clusterVpls;
         }
     }
