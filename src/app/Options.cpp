@@ -1,7 +1,10 @@
 #include "app/Options.h"
 
 #include "core/ImageIo.h"
+#include "reference/OneSidedCheck.h"
 #include "techniques/Registry.h"
+
+#include <spdlog/spdlog.h>
 
 #include <charconv>
 
@@ -68,6 +71,11 @@ Expected<void> checkSceneSetting(const std::string& key, const std::string& valu
     }
     BOUNCE_TRY(auto technique, createTechnique(owner));
     return applySettings(*technique, {{name, value}}, fmt::format("technique '{}'", owner));
+}
+
+void warnOneSidedSurfaces(const Scene& scene, glm::ivec2 size, uint32_t frame) {
+    if (scene.source.rfind("builtin:", 0) == 0) return;  // authored to be seen from the front
+    for (const std::string& message : checkOneSidedSurfaces(scene, size, frame)) spdlog::warn("{}", message);
 }
 
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,

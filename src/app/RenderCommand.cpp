@@ -107,6 +107,7 @@ int runRender(const RenderOptions& o) {
     render::RenderSettings renderSettings;
     if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings); !r.ok())
         return failCommand(cmd, r.error().message);
+    warnOneSidedSurfaces(*scene, *size, static_cast<uint32_t>(o.startFrame));
     if (!o.cameraPath.empty()) return renderCameraPath(o, *scene, std::move(*technique), renderSettings, *size, *component);
 
     auto context = gl::Context::createHeadless();

@@ -272,6 +272,7 @@ int runView(const ViewOptions& o) {
     }
     auto scene = loadSceneWithParams(o.scene, o.sceneParams);
     if (!scene.ok()) return failCommand(cmd, scene.error().message);
+    warnOneSidedSurfaces(*scene, fixedRenderSize.value_or(*size), 0);
 
     render::RenderSettings renderSettings;
     Side a, b;

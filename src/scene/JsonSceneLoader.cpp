@@ -277,6 +277,9 @@ private:
                                    "specularF0", "twoSided"}));
         Material m;
         m.name = name;
+        // Two-sided unless the file says otherwise, like the OBJ and PLY materials a JSON material
+        // usually replaces (docs/scene.md "JSON scene files"): a surface wound the other way stays visible.
+        m.twoSided = true;
         if (j.contains("baseColor")) {
             BOUNCE_TRY(m.baseColor, rgb(j["baseColor"], p + "/baseColor", 0.0f, 1.0f));
         }
