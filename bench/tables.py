@@ -379,6 +379,37 @@ def foundation_table(rec, path):
     return "\n".join(lines)
 
 
+def soak_table(rec, path):
+    t = rec["techniques"]
+    cheap = ", ".join("`" + k + "` with " + " ".join(v) for k, v in rec["cheapSettings"].items())
+    scenes = ", ".join("`" + s + "`" for s in rec["fallbackScenes"])
+    lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); "
+             f"`{rec['command']}`: each technique {rec['frames']} frames of `{rec['scene']}` at {rec['size']}² "
+             f"(or the first of {scenes} it accepts), unless "
+             f"{rec['budgetSeconds']:g} s of frames came first ('budget': the frame count then follows from a short "
+             "probe run, so a frame time measured on a busy machine gives fewer frames); "
+             f"{cheap}. "
+             "Live GL objects and buffer / texture bytes are what the wrappers of src/gpu/ hold "
+             "(`gl::liveResources`), RSS is /proc/self/statm; about 100 samples per run (`--stats-every`). "
+             "Warm-up is the first third of the frames; flat = GL objects and bytes never above their value at the "
+             f"end of warm-up, RSS growth after it at most {rec['rssGrowthBound'] / 1e6:.0f} MB (median of the first "
+             "and last three samples). llvmpipe keeps textures in system memory, so RSS includes them.", "",
+             "| technique | scene | frames | frame ms (wall) | GL objects (start → end of warm-up → end) | buffers MB | textures MB | "
+             "RSS MB (end of warm-up → end) | RSS slope kB / 1000 frames | flat |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for name, e in t.items():
+        if "error" in e:
+            lines.append(f"| `{name}` | – | – | – | {e['error']} | | | | | no |")
+            continue
+        g, r = e["gl_objects"], e["rss_bytes"]
+        frames = f"{e['frames']}" + (" (budget)" if e["limitedBy"] == "time budget" else "")
+        lines.append(f"| `{name}` | `{e['scene']}` | {frames} | {e['frameMs']:.1f} | {g['first']} → {g['warmup']} → {g['last']} | "
+                     f"{e['buffer_bytes']['last'] / 1e6:.3f} | {e['texture_bytes']['last'] / 1e6:.2f} | "
+                     f"{r['warmup'] / 1e6:.1f} → {r['last'] / 1e6:.1f} ({r['growth'] / 1e6:+.2f}) | "
+                     f"{r['slopeBytesPerFrame']:+.2f} | {'yes' if e['flat'] else 'no: ' + '; '.join(e['problems'])} |")
+    return "\n".join(lines)
+
+
 def summary_of(values):
     values = sorted(values)
     n = len(values)
@@ -413,7 +444,7 @@ def interactive_table(rec, path):
 
 GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table,
               "area-light": area_light_table, "vpl-visibility": vpl_visibility_table,
-              "iir": iir_table, "nichols": nichols_table, "foundation": foundation_table,
+              "iir": iir_table, "nichols": nichols_table, "foundation": foundation_table, "soak": soak_table,
               "interactive": interactive_table}
 
 

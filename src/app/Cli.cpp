@@ -5,12 +5,20 @@
 #include "scene/SceneLoader.h"
 
 #include <iostream>
+#include <new>
 
 namespace bounce {
 
 int failCommand(const std::string& command, const std::string& message) {
-    // One line: multi-line messages (shader logs) are rare and keep their first line first.
-    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << message << "\n";
+    // One line: the line breaks of multi-line messages (shader logs, library exceptions) become " | ".
+    std::string line;
+    for (char c : message) {
+        if (c == '\r') continue;
+        if (c == '\n') line += " | ";
+        else line += c;
+    }
+    while (line.size() >= 3 && line.compare(line.size() - 3, 3, " | ") == 0) line.resize(line.size() - 3);
+    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << line << "\n";
     return 1;
 }
 
@@ -55,18 +63,25 @@ int runCli(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         std::string sub;
         for (const CLI::App* s : app.get_subcommands()) sub = s->get_name();
-        std::cerr << "bounce" << (sub.empty() ? "" : " " + sub) << ": " << e.what() << " (see --help)\n";
-        return e.get_exit_code() == 0 ? 2 : e.get_exit_code();
+        std::string what = e.what();
+        for (char& c : what)
+            if (c == '\n') c = ' ';  // one line, as every bounce error
+        std::cerr << "bounce" << (sub.empty() ? "" : " " + sub) << ": " << what << " (see --help)\n";
+        return 1;  // bad input is exit status 1 whatever CLI11's own code for it (README)
     }
     setLogLevel(logLevel);
     // Scene files' `settings` are checked against every technique's declared settings, whatever runs.
     setSceneSettingCheck(checkSceneSetting);
     if (!action) return failCommand("", "no command");
+    const std::string command = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
     try {
         return action();
+    } catch (const std::bad_alloc&) {
+        // Sizes are checked against the memory before work starts; this is what those checks missed.
+        return failCommand(command, "out of memory (std::bad_alloc): try a smaller --size or fewer samples");
     } catch (const std::exception& e) {
         // Library exceptions (assimp, OpenEXR, json) are input problems reported as one line.
-        return failCommand(app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name(), e.what());
+        return failCommand(command, e.what());
     }
 }
 

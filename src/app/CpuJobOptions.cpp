@@ -3,6 +3,7 @@
 #include "app/Options.h"
 #include "core/ImageIo.h"
 #include "core/Log.h"
+#include "core/Resources.h"
 
 #include <charconv>
 #include <cmath>
@@ -45,6 +46,12 @@ Expected<CpuJobCommon> checkCpuJobArgs(const CpuJobArgs& a, const char* command,
     BOUNCE_TRY(c.sceneParams, parseAssignments(a.sceneParams, "--scene-param"));
     if (c.sceneParams.size() != a.sceneParams.size()) return makeError("--scene-param: a key is given twice");
     BOUNCE_TRY(c.size, parseSize(a.size));
+    // Per pixel: the path tracer's double-precision sums (40 B), their copy kept for a time limit
+    // (40 B), the float image (12 B) and its encoded file (up to 12 B), rounded up: an estimate that
+    // turns an impossible size into an error instead of an allocation failure or the OOM killer.
+    constexpr uint64_t kBytesPerPixel = 128;
+    BOUNCE_TRY_VOID(checkMemoryBudget(static_cast<uint64_t>(c.size.x) * static_cast<uint64_t>(c.size.y) * kBytesPerPixel,
+                                      fmt::format("--size '{}': the image buffers", a.size)));
     BOUNCE_TRY(c.bounces, parseBounces(a.bounces, unbounded));
     if (!(a.timeLimit >= 0.0) || !std::isfinite(a.timeLimit))
         return makeError("--time-limit: {} is not a number of seconds >= 0", a.timeLimit);

@@ -1,6 +1,10 @@
 #include "app/Options.h"
 
+#include "core/ImageIo.h"
+#include "reference/OneSidedCheck.h"
 #include "techniques/Registry.h"
+
+#include <spdlog/spdlog.h>
 
 #include <charconv>
 
@@ -16,7 +20,7 @@ Expected<glm::ivec2> parseSize(const std::string& text) {
     if (x == std::string::npos || !number(std::string_view(text).substr(0, x), size.x) ||
         !number(std::string_view(text).substr(x + 1), size.y))
         return makeError("--size '{}' is not of the form WIDTHxHEIGHT (e.g. 512x512)", text);
-    constexpr int kMaxSide = 16384;  // beyond any GL implementation's texture limit
+    constexpr int kMaxSide = kMaxImageSide;
     if (size.x < 1 || size.y < 1 || size.x > kMaxSide || size.y > kMaxSide)
         return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxSide);
     return size;
@@ -67,6 +71,11 @@ Expected<void> checkSceneSetting(const std::string& key, const std::string& valu
     }
     BOUNCE_TRY(auto technique, createTechnique(owner));
     return applySettings(*technique, {{name, value}}, fmt::format("technique '{}'", owner));
+}
+
+void warnOneSidedSurfaces(const Scene& scene, glm::ivec2 size, uint32_t frame) {
+    if (scene.source.rfind("builtin:", 0) == 0) return;  // authored to be seen from the front
+    for (const std::string& message : checkOneSidedSurfaces(scene, size, frame)) spdlog::warn("{}", message);
 }
 
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,

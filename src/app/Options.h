@@ -29,6 +29,10 @@ Expected<Scene> loadSceneWithParams(const std::string& scene, const std::vector<
 // RenderSettings, "TECHNIQUE.NAME" against a fresh instance of that technique (the key and its value).
 Expected<void> checkSceneSetting(const std::string& key, const std::string& value);
 
+// The one-sided-surface check of reference/OneSidedCheck.h on scene files (not built-ins): each
+// finding is one warning line naming the file and the object.
+void warnOneSidedSurfaces(const Scene& scene, glm::ivec2 size, uint32_t frame);
+
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
                                 const std::vector<std::string>& cliSettings);
 

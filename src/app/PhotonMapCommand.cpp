@@ -95,6 +95,7 @@ int runPhotonMap(const PhotonMapArgs& args) {
 
     auto scene = loadScene(args.scene, job.sceneParams);
     if (!scene) return fail(scene.error().message);
+    warnOneSidedSurfaces(*scene, common->size, args.frame);
 
     ProgressBar bar(args.progress || ::isatty(STDERR_FILENO) != 0);
     auto result = runPhotonMapJob(*scene, job, [&](const PhotonMapProgress& p) { bar.update(p); });

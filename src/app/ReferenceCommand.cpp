@@ -2,6 +2,7 @@
 // docs/reference.md documents the light-transport scopes, the run record and the noise estimate.
 #include "app/Cli.h"
 #include "app/CpuJobOptions.h"
+#include "app/Options.h"
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "core/ToneMap.h"
@@ -86,6 +87,7 @@ int runReference(const ReferenceArgs& args) {
 
     auto scene = loadScene(args.scene, job.sceneParams);
     if (!scene) return fail(scene.error().message);
+    warnOneSidedSurfaces(*scene, common->size, args.frame);
 
     ProgressBar bar(args.progress || ::isatty(STDERR_FILENO) != 0);
     auto result = runReferenceJob(*scene, job, [&](const RenderProgress& p) { bar.update(p, args.timeLimit); });

@@ -26,6 +26,7 @@ struct RenderOptions {
     std::string component = "full";
     std::string out;
     std::string stats;
+    int statsEvery = 1;
     std::string cameraPath;
 };
 
@@ -80,6 +81,7 @@ int runRender(const RenderOptions& o) {
     if (!component.ok()) return failCommand(cmd, "--component: " + component.error().message);
     if (o.frames < 1) return failCommand(cmd, fmt::format("--frames {} must be at least 1", o.frames));
     if (o.startFrame < 0) return failCommand(cmd, fmt::format("--start-frame {} must not be negative", o.startFrame));
+    if (o.statsEvery < 1) return failCommand(cmd, fmt::format("--stats-every {} must be at least 1", o.statsEvery));
     // With --camera-path, --out is a pattern: check the first frame's name (same folder and format for all).
     std::string firstOut = o.out;
     if (!o.cameraPath.empty()) {
@@ -105,6 +107,7 @@ int runRender(const RenderOptions& o) {
     render::RenderSettings renderSettings;
     if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings); !r.ok())
         return failCommand(cmd, r.error().message);
+    warnOneSidedSurfaces(*scene, *size, static_cast<uint32_t>(o.startFrame));
     if (!o.cameraPath.empty()) return renderCameraPath(o, *scene, std::move(*technique), renderSettings, *size, *component);
 
     auto context = gl::Context::createHeadless();
@@ -113,7 +116,12 @@ int runRender(const RenderOptions& o) {
     if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
 
     std::vector<FrameStats> frames;
-    for (int f = o.startFrame; f < o.startFrame + o.frames; ++f) frames.push_back((*pipeline)->renderFrame(static_cast<uint32_t>(f)));
+    for (int f = o.startFrame; f < o.startFrame + o.frames; ++f) {
+        FrameStats stats = (*pipeline)->renderFrame(static_cast<uint32_t>(f));
+        // --stats-every N keeps every Nth frame and the last, so a long run's record (and its memory) stays small.
+        const int index = f - o.startFrame;
+        if (index % o.statsEvery == 0 || index == o.frames - 1) frames.push_back(std::move(stats));
+    }
     if (gl::Context::debugErrorCount() > 0)
         spdlog::warn("{} GL errors were reported during rendering", gl::Context::debugErrorCount());
     const Image image = (*pipeline)->readback(*component);
@@ -121,13 +129,18 @@ int runRender(const RenderOptions& o) {
     ToneMap toneMap;
     toneMap.exposureEv = renderSettings.exposure;
     toneMap.curve = *parseToneCurve(renderSettings.toneCurve);
-    if (auto r = writeImage(o.out, image, toneMap); !r.ok()) return failCommand(cmd, r.error().message);
+    // The image and its run record are written together: a failure leaves neither.
+    OutputFiles outputs;
+    auto encoded = encodeImage(o.out, image, toneMap);
+    if (!encoded.ok()) return failCommand(cmd, encoded.error().message);
+    outputs.add(o.out, std::move(*encoded));
     if (!o.stats.empty()) {
         nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
-                                {"frame_count", o.frames}, {"start_frame", o.startFrame}};
+                                {"frame_count", o.frames}, {"start_frame", o.startFrame}, {"stats_every", o.statsEvery}};
         const auto record = renderRunRecord(*scene, **pipeline, frames, (*context)->info(), extra);
-        if (auto r = writeTextFileAtomic(o.stats, record.dump(2) + "\n"); !r.ok()) return failCommand(cmd, r.error().message);
+        outputs.add(o.stats, record.dump(2) + "\n");
     }
+    if (auto r = outputs.commit(); !r.ok()) return failCommand(cmd, r.error().message);
     const auto medians = medianPassTimes(frames);
     spdlog::info("{} on {}: median frame {:.2f} ms GPU, {:.2f} ms CPU", o.technique, scene->name,
                  medians.value("frame", 0.0), medians.value("cpu", 0.0));
@@ -154,7 +167,10 @@ void registerRenderCommand(CLI::App& root, CommandAction& action) {
     c->add_option("--out", options->out, "output image (.exr linear radiance, .png tone-mapped)")->required();
     c->add_option("--camera-path", options->cameraPath,
                   "replay a camera path (JSON from `bounce view`) frame by frame; --out is then a pattern such as frame_%04d.png");
-    c->add_option("--stats", options->stats, "run record (JSON): settings, GPU, per-pass timings, counters");
+    c->add_option("--stats", options->stats, "run record (JSON): settings, GPU, per-pass timings, counters, live GL objects and memory");
+    c->add_option("--stats-every", options->statsEvery,
+                  "keep every Nth frame (and the last) in the run record: a long run's record stays small")
+        ->capture_default_str();
     c->callback([&action, options] { action = [options] { return runRender(*options); }; });
 }
 

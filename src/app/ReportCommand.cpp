@@ -3,10 +3,12 @@
 // scripts/bounce-report.py (matplotlib plots), compiled into the binary and run with python3.
 #include "app/Cli.h"
 #include "app/ReportScript.h"
+#include "core/FileIo.h"
 
 #include <fmt/format.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
@@ -35,10 +37,13 @@ int runReport(const ReportArgs& args) {
     auto fail = [](const std::string& m) { return failCommand(kCommand, m); };
     std::error_code ec;
     if (!fs::is_directory(args.results, ec)) return fail(fmt::format("{}: not a folder", args.results));
+    if (::access(args.results.c_str(), R_OK | X_OK) != 0)
+        return fail(fmt::format("{}: cannot read the folder: {}", args.results, std::strerror(errno)));
     const fs::path out = args.out.empty() ? fs::path(args.results) / "report.html" : fs::path(args.out);
     if (out.extension() != ".html") return fail(fmt::format("--out {}: the report is an .html file", out.string()));
     const fs::path outDir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
     if (!fs::is_directory(outDir, ec)) return fail(fmt::format("--out {}: folder '{}' does not exist", out.string(), outDir.string()));
+    if (auto w = checkWritable(out); !w.ok()) return fail("--out " + w.error().message);
     // The script reads itself from stdin ("python3 -"): nothing to install beside the binary. Debian's
     // interpreter first: python3-matplotlib is installed for it, not for a pyenv or venv python3 on PATH.
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";

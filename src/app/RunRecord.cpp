@@ -12,8 +12,15 @@ nlohmann::json gpuInfoJson(const gl::GpuInfo& info) {
 nlohmann::json frameStatsJson(const FrameStats& s) {
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& p : s.passes) passes[p.name] = p.milliseconds;
+    const gl::LiveResources& r = s.resources;
+    const nlohmann::json resources = {{"gl_objects", r.objects},       {"buffers", r.buffers},
+                                      {"textures", r.textures},        {"framebuffers", r.framebuffers},
+                                      {"vertex_arrays", r.vertexArrays}, {"programs", r.programs},
+                                      {"shaders", r.shaders},          {"queries", r.queries},
+                                      {"buffer_bytes", r.bufferBytes}, {"texture_bytes", r.textureBytes},
+                                      {"rss_bytes", s.residentBytes}};
     return {{"frame", s.frame}, {"time_s", s.time}, {"cpu_ms", s.cpuMilliseconds}, {"gpu_ms", passes},
-            {"counters", s.counters}};
+            {"counters", s.counters}, {"resources", resources}};
 }
 
 static double median(std::vector<double> v) {

@@ -122,14 +122,18 @@ Expected<void> runRender(const Study& study, const Job& job) {
     for (int f = study.startFrame; f < study.startFrame + study.frames; ++f)
         frames.push_back(pipeline.renderFrame(static_cast<uint32_t>(f)));
     const ToneMap toneMap = pngToneMap(loaded->renderSettings);
+    // Every image and the record are written together: a job that fails leaves none of them.
+    OutputFiles files;
     json images = json::object();
     std::map<Component, Image> outputs;
     for (Component c : {Component::Full, Component::Direct, Component::Indirect}) {
         const std::string name(componentName(c));
         Image image = pipeline.readback(c);
         BOUNCE_TRY_VOID(checkFinite(image, fmt::format("{} {} output", job.id, name)));
-        BOUNCE_TRY_VOID(writeImage(folder / (name + ".exr"), image, toneMap));
-        BOUNCE_TRY_VOID(writeImage(folder / (name + ".png"), image, toneMap));
+        for (const char* ext : {".exr", ".png"}) {
+            BOUNCE_TRY(std::string bytes, encodeImage(folder / (name + ext), image, toneMap));
+            files.add(folder / (name + ext), std::move(bytes));
+        }
         images[name] = name + ".png";
         outputs[c] = std::move(image);
     }
@@ -148,13 +152,15 @@ Expected<void> runRender(const Study& study, const Job& job) {
         Image masks(positions.width(), positions.height());
         for (int y = 0; y < masks.height(); ++y)
             for (int x = 0; x < masks.width(); ++x) masks.at(x, y) = {dark.inside(x, y) ? 1.0f : 0.0f, lit.inside(x, y) ? 1.0f : 0.0f, 0.0f};
-        BOUNCE_TRY_VOID(writeImage(folder / "leak-mask.png", masks, ToneMap{0.0f, ToneCurve::Clamp}));
+        BOUNCE_TRY(std::string maskBytes, encodeImage(folder / "leak-mask.png", masks, ToneMap{0.0f, ToneCurve::Clamp}));
+        files.add(folder / "leak-mask.png", std::move(maskBytes));
         record["leak"] = {{"full", leakJson(lightLeakScore(outputs[Component::Full], dark, lit))},
                           {std::string(componentName(job.scope.component)),
                            leakJson(lightLeakScore(outputs[job.scope.component], dark, lit))},
                           {"darkPixels", dark.count()}, {"litPixels", lit.count()}, {"mask", "leak-mask.png"}};
     }
-    return writeRecord(study, job, record);
+    files.add(recordPath(study, job), record.dump(2) + "\n");
+    return files.commit();
 }
 
 Expected<void> runReference(const Study& study, const Job& job) {

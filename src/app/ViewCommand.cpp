@@ -264,8 +264,15 @@ int runView(const ViewOptions& o) {
     }
     if (!o.screenshotDir.empty() && !std::filesystem::is_directory(o.screenshotDir))
         return failCommand(cmd, fmt::format("--screenshot-dir '{}' is not a directory", o.screenshotDir));
+    // The screenshot is written after the window has shown its frames: its path is checked before.
+    if (!o.screenshot.empty()) {
+        if (auto f = imageFormatFor(o.screenshot); !f.ok() || *f != ImageFormat::Png)
+            return failCommand(cmd, fmt::format("--screenshot {}: screenshots are written as .png", o.screenshot));
+        if (auto w = checkWritable(o.screenshot); !w.ok()) return failCommand(cmd, "--screenshot " + w.error().message);
+    }
     auto scene = loadSceneWithParams(o.scene, o.sceneParams);
     if (!scene.ok()) return failCommand(cmd, scene.error().message);
+    warnOneSidedSurfaces(*scene, fixedRenderSize.value_or(*size), 0);
 
     render::RenderSettings renderSettings;
     Side a, b;

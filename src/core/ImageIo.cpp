@@ -5,6 +5,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <stb/stb_image.h>
@@ -12,7 +13,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <vector>
 
 namespace bounce {
@@ -35,9 +39,14 @@ static Expected<Image> readExr(const fs::path& path) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
-        const int width = dw.max.x - dw.min.x + 1;
-        const int height = dw.max.y - dw.min.y + 1;
-        if (width <= 0 || height <= 0) return makeError("{}: empty EXR data window", path.string());
+        const int64_t wide = static_cast<int64_t>(dw.max.x) - dw.min.x + 1;
+        const int64_t high = static_cast<int64_t>(dw.max.y) - dw.min.y + 1;
+        if (wide <= 0 || high <= 0) return makeError("{}: empty EXR data window", path.string());
+        // Checked before allocating: a corrupt or hostile header must not ask for gigabytes.
+        if (wide > kMaxImageSide || high > kMaxImageSide)
+            return makeError("{}: EXR of {}x{} pixels is larger than the {} x {} bounce reads", path.string(), wide, high,
+                             kMaxImageSide, kMaxImageSide);
+        const int width = static_cast<int>(wide), height = static_cast<int>(high);
         const Imf::ChannelList& channels = file.header().channels();
         const bool hasRgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
         const bool hasY = channels.findChannel("Y");
@@ -66,6 +75,11 @@ static Expected<Image> readExr(const fs::path& path) {
 
 static Expected<Image> readStb(const fs::path& path) {
     int w = 0, h = 0, n = 0;
+    // The header first: a corrupt or hostile one must not make stb_image allocate gigabytes.
+    if (!stbi_info(path.c_str(), &w, &h, &n)) return makeError("{}: cannot read image: {}", path.string(), stbi_failure_reason());
+    if (w > kMaxImageSide || h > kMaxImageSide)
+        return makeError("{}: image of {}x{} pixels is larger than the {} x {} bounce reads", path.string(), w, h, kMaxImageSide,
+                         kMaxImageSide);
     stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 3);
     if (!data) return makeError("{}: cannot read image: {}", path.string(), stbi_failure_reason());
     Image image(w, h);
@@ -79,53 +93,94 @@ static Expected<Image> readStb(const fs::path& path) {
 Expected<Image> readImage(const fs::path& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) return makeError("{}: file not found", path.string());
+    if (fs::is_directory(path, ec)) return makeError("{}: is a directory, not an image", path.string());
+    if (std::FILE* f = std::fopen(path.c_str(), "rb")) std::fclose(f);
+    else return makeError("{}: cannot open for reading: {}", path.string(), std::strerror(errno));
     if (lowerExtension(path) == ".exr") return readExr(path);
     return readStb(path);
 }
 
-static Expected<void> writeExr(const fs::path& tmp, const Image& image) {
+namespace {
+
+// OpenEXR writes through this into memory, so the file itself is written (and every write checked)
+// by writeFileAtomic: OpenEXR's own file stream reports no error from its final flush and close.
+class MemoryOStream : public Imf::OStream {
+public:
+    MemoryOStream() : Imf::OStream("memory") {}
+    void write(const char c[], int n) override {
+        const size_t end = m_pos + static_cast<size_t>(n);
+        if (end > m_bytes.size()) m_bytes.resize(end);
+        std::memcpy(m_bytes.data() + m_pos, c, static_cast<size_t>(n));
+        m_pos = end;
+    }
+    uint64_t tellp() override { return m_pos; }
+    void seekp(uint64_t pos) override { m_pos = static_cast<size_t>(pos); }
+    std::string& bytes() { return m_bytes; }
+
+private:
+    std::string m_bytes;
+    size_t m_pos = 0;
+};
+
+void appendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+}
+
+}  // namespace
+
+static Expected<std::string> encodeExr(const Image& image) {
     try {
-        Imf::Header header(image.width(), image.height());
-        header.channels().insert("R", Imf::Channel(Imf::FLOAT));
-        header.channels().insert("G", Imf::Channel(Imf::FLOAT));
-        header.channels().insert("B", Imf::Channel(Imf::FLOAT));
-        Imf::OutputFile file(tmp.c_str(), header);
-        Imf::FrameBuffer fb;
-        char* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
-        const size_t xs = sizeof(glm::vec3), ys = sizeof(glm::vec3) * image.width();
-        fb.insert("R", Imf::Slice(Imf::FLOAT, base + 0, xs, ys));
-        fb.insert("G", Imf::Slice(Imf::FLOAT, base + 4, xs, ys));
-        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 8, xs, ys));
-        file.setFrameBuffer(fb);
-        file.writePixels(image.height());
-        return {};
+        MemoryOStream stream;
+        {
+            Imf::Header header(image.width(), image.height());
+            header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+            header.channels().insert("G", Imf::Channel(Imf::FLOAT));
+            header.channels().insert("B", Imf::Channel(Imf::FLOAT));
+            Imf::OutputFile file(stream, header);
+            Imf::FrameBuffer fb;
+            char* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
+            const size_t xs = sizeof(glm::vec3), ys = sizeof(glm::vec3) * image.width();
+            fb.insert("R", Imf::Slice(Imf::FLOAT, base + 0, xs, ys));
+            fb.insert("G", Imf::Slice(Imf::FLOAT, base + 4, xs, ys));
+            fb.insert("B", Imf::Slice(Imf::FLOAT, base + 8, xs, ys));
+            file.setFrameBuffer(fb);
+            file.writePixels(image.height());
+        }  // the OutputFile writes its line offset table when destroyed
+        return std::move(stream.bytes());
     } catch (const std::exception& e) {
-        return makeError("{}: cannot write EXR: {}", tmp.string(), e.what());
+        return makeError("cannot encode EXR: {}", e.what());
     }
 }
 
-static Expected<void> writePng(const fs::path& tmp, const Image& display) {
-    std::vector<unsigned char> bytes(display.pixelCount() * 3);
+Expected<std::string> encodeDisplayPng(const Image& display) {
+    std::vector<unsigned char> pixels(display.pixelCount() * 3);
     for (size_t i = 0; i < display.pixelCount(); ++i)
         for (int c = 0; c < 3; ++c)
-            bytes[3 * i + c] = static_cast<unsigned char>(std::lround(std::clamp(display.data()[i][c], 0.0f, 1.0f) * 255.0f));
-    if (!stbi_write_png(tmp.c_str(), display.width(), display.height(), 3, bytes.data(), display.width() * 3))
-        return makeError("{}: PNG write failed", tmp.string());
-    return {};
+            pixels[3 * i + c] = static_cast<unsigned char>(std::lround(std::clamp(display.data()[i][c], 0.0f, 1.0f) * 255.0f));
+    std::string bytes;
+    if (!stbi_write_png_to_func(appendBytes, &bytes, display.width(), display.height(), 3, pixels.data(), display.width() * 3))
+        return makeError("cannot encode PNG");
+    return bytes;
+}
+
+Expected<std::string> encodeImage(const fs::path& path, const Image& radiance, const ToneMap& toneMap) {
+    BOUNCE_TRY(ImageFormat format, imageFormatFor(path));
+    if (radiance.empty()) return makeError("{}: refusing to write an empty image", path.string());
+    auto bytes = format == ImageFormat::Exr ? encodeExr(radiance) : encodeDisplayPng(toDisplay(radiance, toneMap));
+    if (!bytes.ok()) return makeError("{}: {}", path.string(), bytes.error().message);
+    return bytes;
 }
 
 Expected<void> writeImage(const fs::path& path, const Image& radiance, const ToneMap& toneMap) {
-    BOUNCE_TRY(ImageFormat format, imageFormatFor(path));
-    if (radiance.empty()) return makeError("{}: refusing to write an empty image", path.string());
-    return writeFileAtomic(path, [&](const fs::path& tmp) -> Expected<void> {
-        if (format == ImageFormat::Exr) return writeExr(tmp, radiance);
-        return writePng(tmp, toDisplay(radiance, toneMap));
-    });
+    BOUNCE_TRY(std::string bytes, encodeImage(path, radiance, toneMap));
+    return writeFileAtomic(path, bytes);
 }
 
 Expected<void> writeDisplayPng(const fs::path& path, const Image& display) {
     if (lowerExtension(path) != ".png") return makeError("{}: expected a .png path", path.string());
-    return writeFileAtomic(path, [&](const fs::path& tmp) { return writePng(tmp, display); });
+    auto bytes = encodeDisplayPng(display);
+    if (!bytes.ok()) return makeError("{}: {}", path.string(), bytes.error().message);
+    return writeFileAtomic(path, *bytes);
 }
 
 Expected<void> checkFinite(const Image& image, const std::string& what) {

@@ -1,15 +1,138 @@
 #include "gpu/Objects.h"
 
 #include "core/Check.h"
+#include "gpu/Context.h"
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <array>
+#include <map>
+#include <mutex>
+#include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace bounce::gl {
 
 void label(GLenum identifier, GLuint id, std::string_view name) {
     if (!name.empty()) glObjectLabel(identifier, id, static_cast<GLsizei>(name.size()), name.data());
+}
+
+namespace {
+
+// Object names are per context: the ledger keys storage by (context, name).
+struct Ledger {
+    std::mutex mutex;
+    std::array<int64_t, static_cast<size_t>(ObjectKind::Count)> live{};
+    std::map<std::tuple<const void*, ObjectKind, GLuint>, uint64_t> bytes;
+    uint64_t bufferBytes = 0, textureBytes = 0;
+};
+
+Ledger& theLedger() {
+    static Ledger ledger;
+    return ledger;
+}
+
+uint64_t& bytesOf(Ledger& l, ObjectKind kind) { return kind == ObjectKind::Buffer ? l.bufferBytes : l.textureBytes; }
+
+// A GL_OUT_OF_MEMORY from the allocation just made is an input problem (a size too large for this
+// GPU), reported as one line by the CLI (app/Cli.cpp catches it) instead of an incomplete object.
+void throwIfOutOfMemory(std::string_view what, std::string_view name, uint64_t bytes) {
+    bool outOfMemory = false;
+    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) outOfMemory |= e == GL_OUT_OF_MEMORY;
+    if (outOfMemory)
+        throw std::runtime_error(fmt::format("out of GPU memory allocating {} '{}' ({:.1f} MB): try a smaller --size or "
+                                             "smaller settings",
+                                             what, name, static_cast<double>(bytes) * 1e-6));
+}
+
+}  // namespace
+
+namespace ledger {
+
+void created(ObjectKind kind, GLuint) {
+    Ledger& l = theLedger();
+    std::lock_guard lock(l.mutex);
+    ++l.live[static_cast<size_t>(kind)];
+}
+
+void deleted(ObjectKind kind, GLuint id) {
+    Ledger& l = theLedger();
+    std::lock_guard lock(l.mutex);
+    --l.live[static_cast<size_t>(kind)];
+    if (kind != ObjectKind::Buffer && kind != ObjectKind::Texture) return;
+    const auto it = l.bytes.find({Context::current(), kind, id});
+    if (it == l.bytes.end()) return;
+    bytesOf(l, kind) -= it->second;
+    l.bytes.erase(it);
+}
+
+void storage(ObjectKind kind, GLuint id, uint64_t bytes) {
+    Ledger& l = theLedger();
+    std::lock_guard lock(l.mutex);
+    uint64_t& entry = l.bytes[{Context::current(), kind, id}];
+    bytesOf(l, kind) += bytes - entry;
+    entry = bytes;
+}
+
+}  // namespace ledger
+
+LiveResources liveResources() {
+    Ledger& l = theLedger();
+    std::lock_guard lock(l.mutex);
+    LiveResources r;
+    const auto live = [&](ObjectKind k) { return l.live[static_cast<size_t>(k)]; };
+    for (int64_t n : l.live) r.objects += n;
+    r.buffers = live(ObjectKind::Buffer);
+    r.textures = live(ObjectKind::Texture);
+    r.framebuffers = live(ObjectKind::Framebuffer);
+    r.vertexArrays = live(ObjectKind::VertexArray);
+    r.programs = live(ObjectKind::Program);
+    r.shaders = live(ObjectKind::Shader);
+    r.queries = live(ObjectKind::Query);
+    r.bufferBytes = l.bufferBytes;
+    r.textureBytes = l.textureBytes;
+    return r;
+}
+
+uint64_t texelBytes(GLenum format) {
+    switch (format) {
+        case GL_R8: case GL_R8UI: case GL_R8I: case GL_STENCIL_INDEX8: return 1;
+        case GL_RG8: case GL_R16F: case GL_R16UI: case GL_R16I: case GL_R16: case GL_DEPTH_COMPONENT16: return 2;
+        case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_RG16F: case GL_RG16UI: case GL_RG16: case GL_R32F: case GL_R32UI:
+        case GL_R32I: case GL_R11F_G11F_B10F: case GL_RGB10_A2: case GL_RGB9_E5: case GL_DEPTH_COMPONENT24:
+        case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_RGBA8UI: case GL_RGBA8I: return 4;
+        case GL_DEPTH32F_STENCIL8: case GL_RGBA16F: case GL_RGBA16UI: case GL_RGBA16: case GL_RG32F: case GL_RG32UI:
+        case GL_RG32I: return 8;
+        case GL_RGB32F: case GL_RGB32UI: return 12;
+        case GL_RGBA32F: case GL_RGBA32UI: case GL_RGBA32I: return 16;
+        default: break;
+    }
+    // Any other sized format: the bits GL reports for its components.
+    GLint bits = 0;
+    for (GLenum component : {GL_INTERNALFORMAT_RED_SIZE, GL_INTERNALFORMAT_GREEN_SIZE, GL_INTERNALFORMAT_BLUE_SIZE,
+                             GL_INTERNALFORMAT_ALPHA_SIZE, GL_INTERNALFORMAT_DEPTH_SIZE, GL_INTERNALFORMAT_STENCIL_SIZE}) {
+        GLint b = 0;
+        glGetInternalformativ(GL_TEXTURE_2D, format, component, 1, &b);
+        bits += b;
+    }
+    return static_cast<uint64_t>((bits + 7) / 8);
+}
+
+uint64_t textureStorageBytes(const TextureDesc& d) {
+    const uint64_t texel = texelBytes(d.format);
+    const bool volume = d.target == GL_TEXTURE_3D;
+    const uint64_t faces = d.target == GL_TEXTURE_CUBE_MAP ? 6 : 1;
+    const uint64_t samples = d.samples > 0 ? static_cast<uint64_t>(d.samples) : 1;
+    uint64_t total = 0;
+    for (int level = 0; level < d.levels; ++level) {
+        const uint64_t w = static_cast<uint64_t>(std::max(1, d.width >> level));
+        const uint64_t h = static_cast<uint64_t>(std::max(1, d.height >> level));
+        const uint64_t z = static_cast<uint64_t>(volume ? std::max(1, d.depth >> level) : d.depth);
+        total += w * h * z * faces * samples * texel;
+    }
+    return total;
 }
 
 Buffer Buffer::create(std::string_view name, size_t bytes, const void* data, GLbitfield flags) {
@@ -20,6 +143,8 @@ Buffer Buffer::create(std::string_view name, size_t bytes, const void* data, GLb
     b.m_handle = Handle<BufferTraits>(id);
     b.m_size = bytes;
     glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+    throwIfOutOfMemory("buffer", name, bytes);
+    ledger::storage(ObjectKind::Buffer, id, bytes);
     label(GL_BUFFER, id, name);
     return b;
 }
@@ -50,6 +175,12 @@ Texture Texture::create(std::string_view name, const TextureDesc& desc) {
     Texture t;
     t.m_handle = Handle<TextureTraits>(id);
     t.m_desc = desc;
+    const uint64_t bytes = textureStorageBytes(desc);
+    const auto allocated = [&] {
+        throwIfOutOfMemory("texture", name, bytes);
+        ledger::storage(ObjectKind::Texture, id, bytes);
+        label(GL_TEXTURE, id, name);
+    };
     switch (desc.target) {
         case GL_TEXTURE_2D:
         case GL_TEXTURE_CUBE_MAP:
@@ -62,21 +193,21 @@ Texture Texture::create(std::string_view name, const TextureDesc& desc) {
             break;
         case GL_TEXTURE_2D_MULTISAMPLE:
             glTextureStorage2DMultisample(id, desc.samples, desc.format, desc.width, desc.height, GL_TRUE);
-            label(GL_TEXTURE, id, name);
+            allocated();
             return t;
         case GL_TEXTURE_2D_MULTISAMPLE_ARRAY:
             // Multisampled textures have no sampler state: setting filters on them is an error.
             glTextureStorage3DMultisample(id, desc.samples, desc.format, desc.width, desc.height, desc.depth, GL_TRUE);
-            label(GL_TEXTURE, id, name);
+            allocated();
             return t;
         default: BOUNCE_CHECK(false, "texture '{}': unsupported target 0x{:x}", name, desc.target);
     }
+    allocated();
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(desc.minFilter));
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(desc.magFilter));
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, static_cast<GLint>(desc.wrap));
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, static_cast<GLint>(desc.wrap));
     glTextureParameteri(id, GL_TEXTURE_WRAP_R, static_cast<GLint>(desc.wrap));
-    label(GL_TEXTURE, id, name);
     return t;
 }
 

@@ -6,11 +6,27 @@
 #include <glm/vec2.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 namespace bounce::gl {
 
 void label(GLenum identifier, GLuint id, std::string_view name);
+
+// What the wrappers hold now, across every context of the process: live GL objects of each kind and
+// the bytes of buffer and texture storage (immutable storage, so the bytes are exact for buffers and
+// the formats' texel sizes for textures). Run records carry it per frame (`resources`), the soak
+// benchmark and test check it stays flat (bench/soak/run.py, tests/cli/soak_test.py).
+struct LiveResources {
+    int64_t objects = 0;  // every kind together
+    int64_t buffers = 0, textures = 0, framebuffers = 0, vertexArrays = 0, programs = 0, shaders = 0, queries = 0;
+    uint64_t bufferBytes = 0, textureBytes = 0;
+};
+LiveResources liveResources();
+// Bytes of one texel of a sized internal format (GL_RGBA16F: 8).
+uint64_t texelBytes(GLenum internalFormat);
+// Bytes of a texture's storage: every level, layer and sample.
+uint64_t textureStorageBytes(const struct TextureDesc& desc);
 
 class Buffer {
 public:

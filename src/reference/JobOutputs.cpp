@@ -20,9 +20,12 @@ Expected<ImageFormat> checkJobOutputs(const std::filesystem::path& output, const
 
 Expected<void> writeJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats, ImageFormat format,
                                const Image& radiance, const ToneMap& toneMap, const nlohmann::ordered_json& record) {
-    BOUNCE_TRY_VOID(writeImage(output, radiance, format == ImageFormat::Png ? toneMap : ToneMap{}));
-    if (!stats.empty()) BOUNCE_TRY_VOID(writeTextFileAtomic(stats, record.dump(2) + "\n"));
-    return {};
+    // The image and its run record are written together: a failure leaves neither.
+    OutputFiles outputs;
+    BOUNCE_TRY(std::string image, encodeImage(output, radiance, format == ImageFormat::Png ? toneMap : ToneMap{}));
+    outputs.add(output, std::move(image));
+    if (!stats.empty()) outputs.add(stats, record.dump(2) + "\n");
+    return outputs.commit();
 }
 
 nlohmann::ordered_json jobSceneRecord(const Scene& scene, const std::string& asked, const SceneParams& params) {

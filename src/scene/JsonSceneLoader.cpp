@@ -1,5 +1,7 @@
 #include "scene/JsonSceneLoader.h"
 
+#include "core/FileIo.h"
+
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "scene/AreaTexture.h"
@@ -275,6 +277,9 @@ private:
                                    "specularF0", "twoSided"}));
         Material m;
         m.name = name;
+        // Two-sided unless the file says otherwise, like the OBJ and PLY materials a JSON material
+        // usually replaces (docs/scene.md "JSON scene files"): a surface wound the other way stays visible.
+        m.twoSided = true;
         if (j.contains("baseColor")) {
             BOUNCE_TRY(m.baseColor, rgb(j["baseColor"], p + "/baseColor", 0.0f, 1.0f));
         }
@@ -606,11 +611,7 @@ private:
 }  // namespace
 
 Expected<Scene> loadJsonScene(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return makeError("{}: cannot open scene file", path.string());
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    BOUNCE_TRY(const std::string text, readTextFile(path));
     json root;
     try {
         root = json::parse(text);

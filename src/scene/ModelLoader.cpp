@@ -18,10 +18,13 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <string_view>
 #include <utility>
 
 namespace bounce {
@@ -42,6 +45,17 @@ constexpr glm::vec3 kDefaultSunIrradiance{4.0f};  // W/m^2
 const glm::vec3 kDefaultSunDirection = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.5f));
 
 enum class Format { Gltf, Obj, Ply };
+
+// assimp's name for the mesh and node of OBJ faces outside any `o`/`g` statement (ObjFileParser's
+// DEFAULT_OBJNAME). Nobody wrote it: messages and object names use the file's name instead.
+constexpr std::string_view kAssimpDefaultObject = "defaultobject";
+
+// The name a user recognises for an assimp mesh or node name: the file's when assimp made it up.
+std::string userName(const aiString& name, const fs::path& path, bool stem) {
+    if (name.length == 0 || std::string_view(name.C_Str()) == kAssimpDefaultObject)
+        return stem ? path.stem().string() : path.filename().string();
+    return name.C_Str();
+}
 
 std::string lowerExtension(const fs::path& p) {
     std::string ext = p.extension().string();
@@ -239,7 +253,9 @@ private:
 
     Mesh mesh(const aiMesh* am, unsigned index) {
         Mesh m;
-        m.name = am->mName.length > 0 ? am->mName.C_Str() : fmt::format("mesh-{}", index);
+        m.name = std::string_view(am->mName.C_Str()) == kAssimpDefaultObject ? m_path.filename().string()
+                 : am->mName.length > 0                                       ? am->mName.C_Str()
+                                                                              : fmt::format("mesh-{}", index);
         if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return m;  // points and lines: skipped
         m.positions.reserve(am->mNumVertices);
         for (unsigned v = 0; v < am->mNumVertices; ++v) m.positions.push_back(toGlm(am->mVertices[v]));
@@ -273,7 +289,8 @@ private:
             if (!m_meshUsable[meshIndex]) continue;
             const aiMesh* am = m_ai->mMeshes[meshIndex];
             Object o;
-            std::string part = node->mName.length > 0 ? node->mName.C_Str() : m_scene.meshes[m_meshBase + meshIndex].name;
+            std::string part = node->mName.length == 0 ? m_scene.meshes[m_meshBase + meshIndex].name
+                                                        : userName(node->mName, m_path, /*stem=*/true);
             if (node->mNumMeshes > 1) part += fmt::format("#{}", i);
             if (m_placement.name.empty()) o.name = part;
             else o.name = m_instances == 1 ? m_placement.name : m_placement.name + "/" + part;
@@ -371,6 +388,9 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
     else return makeError("{}: unsupported model extension '{}' (use .gltf .glb .obj .ply)", path.string(), ext);
     const std::string where = placement.origin.empty() ? path.string() : placement.origin;
     if (!fs::exists(path)) return makeError("{}: model file '{}' not found", where, path.string());
+    if (fs::is_directory(path)) return makeError("{}: model file '{}' is a directory", where, path.string());
+    if (std::ifstream probe(path, std::ios::binary); !probe)
+        return makeError("{}: cannot open model file '{}': {}", where, path.string(), std::strerror(errno));
 
     Assimp::Importer importer;
     if (format == Format::Obj) {
@@ -384,12 +404,28 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
             importer.SetIOHandler(new OverlayIoSystem(path.string(), std::move(rewrite->text)));
         }
     }
-    // FlipUVs: bounce's uv origin is the image's top-left corner (Image row 0), see docs/scene.md.
-    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices |
-                           aiProcess_FlipUVs | aiProcess_ValidateDataStructure;
+    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* ai = importer.ReadFile(path.string(), flags);
     if (!ai || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !ai->mRootNode)
         return makeError("{}: cannot read model '{}': {}", where, path.string(), importer.GetErrorString());
+    // Non-finite values are refused before JoinIdenticalVertices: assimp 5.2 joins a NaN vertex with
+    // another one (its spatial sort compares NaN distances), which hides the NaN behind a degenerate
+    // triangle or, worse, a valid but wrong one.
+    for (unsigned i = 0; i < ai->mNumMeshes; ++i) {
+        const aiMesh* am = ai->mMeshes[i];
+        const auto bad = [](const aiVector3D& v) { return !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z); };
+        for (unsigned v = 0; v < am->mNumVertices; ++v) {
+            const char* what = bad(am->mVertices[v])                               ? "position"
+                               : am->HasNormals() && bad(am->mNormals[v])         ? "normal"
+                               : am->HasTextureCoords(0) && bad(am->mTextureCoords[0][v]) ? "texture coordinate"
+                                                                                  : nullptr;
+            if (what)
+                return makeError("{}: mesh '{}': vertex {} has a non-finite {}", where, userName(am->mName, path, false), v, what);
+        }
+    }
+    // FlipUVs: bounce's uv origin is the image's top-left corner (Image row 0), see docs/scene.md.
+    ai = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs);
+    if (!ai) return makeError("{}: cannot read model '{}': {}", where, path.string(), importer.GetErrorString());
     Importer run(scene, path, placement, format);
     return run.run(ai);
 }

@@ -1,6 +1,7 @@
 #include "techniques/Pipeline.h"
 
 #include "core/Check.h"
+#include "core/Resources.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 #include "gpu/Readbacks.h"
@@ -28,6 +29,41 @@ std::string_view componentName(Component c) {
     return "?";
 }
 
+namespace {
+
+// The screen-sized targets every technique shares, bytes per pixel: G-buffer position RGBA32F (16),
+// normal, albedo and emission RGBA16F (3 x 8), depth 32F (4), the direct, indirect and full outputs
+// RGBA32F (3 x 16); and on the CPU the readback (RGBA32F 16, the Image 12, its encoded file up to 12).
+constexpr uint64_t kSharedGpuBytesPerPixel = 16 + 3 * 8 + 4 + 3 * 16;
+constexpr uint64_t kReadbackBytesPerPixel = 16 + 12 + 12;
+constexpr GLenum kGpuMemoryInfoDedicatedVidmemNvx = 0x9047;  // GL_NVX_gpu_memory_info, in KiB
+
+// A size whose shared targets cannot fit is refused before anything is allocated (a technique's own
+// buffers come on top; an allocation that still fails is caught by gl::Texture::create).
+Expected<void> checkTargetMemory(const gl::GpuInfo& info, glm::ivec2 size) {
+    const uint64_t pixels = static_cast<uint64_t>(size.x) * static_cast<uint64_t>(size.y);
+    const std::string what = fmt::format("image size {}x{}", size.x, size.y);
+    // Software renderers keep textures in this process's memory.
+    const bool software = info.renderer.find("llvmpipe") != std::string::npos ||
+                          info.renderer.find("softpipe") != std::string::npos;
+    if (software)
+        return checkMemoryBudget(pixels * (kSharedGpuBytesPerPixel + kReadbackBytesPerPixel),
+                                 what + ": the shared render targets (" + info.renderer.substr(0, info.renderer.find(' ')) +
+                                     " renders in system memory) and the readback");
+    BOUNCE_TRY_VOID(checkMemoryBudget(pixels * kReadbackBytesPerPixel, what + ": the readback buffers"));
+    if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+        GLint kib = 0;
+        glGetIntegerv(kGpuMemoryInfoDedicatedVidmemNvx, &kib);
+        const uint64_t bytes = pixels * kSharedGpuBytesPerPixel, budget = static_cast<uint64_t>(kib) * 1024;
+        if (kib > 0 && bytes > budget)
+            return makeError("{}: the shared render targets need about {}, more than the GPU's {}", what, formatBytes(bytes),
+                             formatBytes(budget));
+    }
+    return {};
+}
+
+}  // namespace
+
 Pipeline::Pipeline(const Scene& scene, glm::ivec2 size, const render::RenderSettings& settings)
     : m_scene(scene), m_size(size), m_settings(settings), m_sceneGpu(scene), m_drawer(m_sceneGpu) {
     m_timers.setMode(settings.timing == "finish" ? gl::GpuTimers::Mode::Finish : gl::GpuTimers::Mode::Queries);
@@ -42,6 +78,7 @@ Expected<std::unique_ptr<Pipeline>> Pipeline::create(const Scene& scene, std::un
     const int maxSize = context->info().maxTextureSize;
     if (size.x > maxSize || size.y > maxSize)
         return makeError("image size {}x{} exceeds the GPU's maximum texture size {}", size.x, size.y, maxSize);
+    BOUNCE_TRY_VOID(checkTargetMemory(context->info(), size));
     std::unique_ptr<Pipeline> p(new Pipeline(scene, size, settings));
     BOUNCE_TRY(p->m_lights, render::LightSet::create());
     BOUNCE_TRY(p->m_gbuffer, render::GBuffer::create(size));
@@ -124,6 +161,8 @@ FrameStats Pipeline::renderFrame(uint32_t frame, const Camera* cameraOverride) {
     stats.cpuMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats.counters["shadowMapsRendered"] = static_cast<double>(m_lights.mapsRendered());
     stats.counters["triangles"] = static_cast<double>(m_sceneGpu.triangleCount(render::DrawFilter::All));
+    stats.resources = gl::liveResources();
+    stats.residentBytes = residentBytes();
     return stats;
 }
 

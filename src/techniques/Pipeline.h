@@ -20,6 +20,8 @@ struct FrameStats {
     double cpuMilliseconds = 0.0;    // wall time of renderFrame including the GPU wait
     std::vector<gl::PassTime> passes;  // "frame" first
     Counters counters;
+    gl::LiveResources resources;  // the GL objects and storage bytes live after the frame (gpu/Objects.h)
+    uint64_t residentBytes = 0;   // the process's resident set size after the frame (core/Resources.h)
 };
 
 class Pipeline {

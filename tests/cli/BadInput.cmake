@@ -164,3 +164,17 @@ execute_process(COMMAND ${BOUNCE} render --scene cornell-box --size 8x8 --camera
 if(NOT rc EQUAL 0 OR NOT EXISTS ${frame0} OR EXISTS ${WORK}/rp_0001.png)
   message(SEND_ERROR "good camera-path replay failed (${rc}): ${err}")
 endif()
+
+# A one-sided surface wound away from the camera and the light (docs/scene.md "One-sided or
+# two-sided"): the render succeeds and warns, one line per finding, naming the file and the object.
+file(WRITE ${WORK}/down.obj "v 0 0 0\nv 0 0 -1\nv 1 0 0\nv 1 0 -1\nf 1 2 3\nf 3 2 4\n")
+file(WRITE ${WORK}/reversed.json "{\"objects\": [{\"name\": \"floor\", \"model\": \"down.obj\", \"material\": \"m\", \"transform\": {\"scale\": 4, \"translation\": [-2, 0, 2]}}],\n\"materials\": {\"m\": {\"twoSided\": false}},\n\"camera\": {\"position\": [0, 2, 2], \"target\": [0, 0, 0]},\n\"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": 1}]}\n")
+execute_process(COMMAND ${BOUNCE} render --scene ${WORK}/reversed.json --size 16x16 --out ${WORK}/reversed.png
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+string(REGEX MATCHALL "\n" newlines "${err}")
+list(LENGTH newlines lines)
+if(NOT rc EQUAL 0 OR NOT lines EQUAL 2
+   OR NOT err MATCHES "reversed.json: object 'floor' is one-sided and seen from behind over [0-9]+% of the image"
+   OR NOT err MATCHES "reversed.json: object 'floor' is one-sided and every light is behind it")
+  message(SEND_ERROR "one-sided warning missing or malformed (${rc}):\n${err}")
+endif()

@@ -77,6 +77,56 @@ TEST(ImageIo, BadPathsFailWithoutPartialFiles) {
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// OutputFiles writes outputs that belong together: when one cannot be written (here a link to
+// /dev/full, whose writes fail with ENOSPC), none is left, and the previous version is kept.
+TEST(FileIo, OutputFilesLeaveNothingWhenOneFails) {
+    const fs::path dir = tempDir() / "together";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    ASSERT_TRUE(writeTextFileAtomic(dir / "image.png", "old").ok());
+    fs::create_symlink("/dev/full", dir / "full.json");
+    OutputFiles files;
+    files.add(dir / "image.png", "new");
+    files.add(dir / "full.json", "{}");
+    const auto r = files.commit();
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("full.json"), std::string::npos) << r.error().message;
+    EXPECT_EQ(*readTextFile(dir / "image.png"), "old");
+    size_t entries = 0;
+    for (auto& e : fs::directory_iterator(dir)) {
+        ++entries;
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+    }
+    EXPECT_EQ(entries, 2u);  // image.png and the link
+    EXPECT_TRUE(fs::is_character_file("/dev/full"));  // written in place, never replaced
+}
+
+// A symbolic link to a file is followed: the file it names is replaced, the link stays a link.
+TEST(FileIo, WritesThroughSymbolicLinks) {
+    const fs::path dir = tempDir() / "links";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    ASSERT_TRUE(writeTextFileAtomic(dir / "target.txt", "one").ok());
+    fs::create_symlink("target.txt", dir / "link.txt");
+    ASSERT_TRUE(writeTextFileAtomic(dir / "link.txt", "two").ok());
+    EXPECT_TRUE(fs::is_symlink(dir / "link.txt"));
+    EXPECT_EQ(*readTextFile(dir / "target.txt"), "two");
+    // A device is written in place: /dev/null swallows it, and stays a device.
+    EXPECT_TRUE(writeTextFileAtomic("/dev/null", "gone").ok());
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+TEST(FileIo, CheckWritableNamesTheFolder) {
+    const auto missing = checkWritable(tempDir() / "no-such-folder" / "out.png");
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().message.find("no-such-folder"), std::string::npos);
+    // /proc refuses new files to everyone, root included (permission bits would not stop root).
+    const auto proc = checkWritable("/proc/out.png");
+    ASSERT_FALSE(proc.ok());
+    EXPECT_NE(proc.error().message.find("not writable"), std::string::npos) << proc.error().message;
+    EXPECT_TRUE(checkWritable(tempDir() / "fine.png").ok());
+}
+
 TEST(ImageIo, NonFiniteIsReported) {
     Image img(3, 3);
     img.at(2, 1).g = std::nanf("");

@@ -172,6 +172,41 @@ TEST(ModelLoader, MissingTextureWarnsAndFallsBackToBaseColour) {
     EXPECT_TRUE(contains(log.text(), "no-such-texture.png")) << log.text();
 }
 
+// assimp names the mesh and node of an OBJ without `o`/`g` "defaultobject"; messages and object names
+// use the file the user wrote instead (issue "Reliability": warnings named 'defaultobject').
+TEST(ModelLoader, ObjWithoutObjectNamesUsesTheFile) {
+    const fs::path p = writeFile("plate.obj", "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+    LogCapture log;
+    Expected<Scene> scene = loadScene(p.string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->objects.size(), 1u);
+    EXPECT_EQ(scene->objects[0].name, "plate");
+    EXPECT_EQ(scene->meshes[scene->objects[0].mesh].name, "plate.obj");
+    // The second triangle is degenerate (collinear): the warning names the file and the object.
+    EXPECT_TRUE(contains(log.text(), "mesh 'plate.obj' (object 'plate')")) << log.text();
+    EXPECT_FALSE(contains(log.text(), "defaultobject")) << log.text();
+    // Placed by a JSON scene, the object is the user's.
+    writeFile("plate.json", R"({"objects": [{"name": "table-top", "model": "plate.obj"}],
+ "camera": {"position": [0, 1, 3], "target": [0, 0, 0]}})");
+    LogCapture log2;
+    Expected<Scene> placed = loadScene((tempDir() / "plate.json").string());
+    ASSERT_TRUE(placed.ok()) << placed.error().message;
+    EXPECT_TRUE(contains(log2.text(), "plate.json: mesh 'plate.obj' (object 'table-top')")) << log2.text();
+    EXPECT_FALSE(contains(log2.text(), "defaultobject")) << log2.text();
+}
+
+// A NaN vertex is reported as such: assimp's JoinIdenticalVertices, which runs after bounce's check,
+// used to merge it with another vertex and leave a "degenerate" triangle (or a wrong valid one).
+TEST(ModelLoader, NanVertexIsReportedBeforeAssimpJoinsVertices) {
+    for (const char* v : {"1 nan 0", "nan 1 0", "1 NaN 2"}) {
+        const fs::path p = writeFile("nan-vertex.obj", std::string("v 0 0 0\nv ") + v + "\nv 1 0 0\nf 1 2 3\n");
+        Expected<Scene> scene = loadScene(p.string());
+        ASSERT_FALSE(scene.ok()) << v;
+        EXPECT_TRUE(contains(scene.error().message, "nan-vertex.obj")) << scene.error().message;
+        EXPECT_TRUE(contains(scene.error().message, "vertex 1 has a non-finite position")) << scene.error().message;
+    }
+}
+
 TEST(ModelLoader, AsciiPly) {
     const fs::path p = writeFile("square.ply",
                                  "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"

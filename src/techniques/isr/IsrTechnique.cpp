@@ -30,6 +30,8 @@
 #include "gpu/ShaderLimits.h"
 
 #include <algorithm>
+#include <cstring>
+#include <vector>
 
 namespace bounce {
 
