@@ -4,6 +4,7 @@
 #include "core/Log.h"
 #include "core/ToneMap.h"
 #include "scene/ObjNormals.h"
+#include "scene/PlyCheck.h"
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
@@ -373,6 +374,13 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
     if (!fs::exists(path)) return makeError("{}: model file '{}' not found", where, path.string());
 
     Assimp::Importer importer;
+    if (format == Format::Ply) {
+        // assimp 5.2 hangs or crashes on some malformed PLY files: bounce checks the structure first.
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return makeError("{}: cannot read model '{}'", where, path.string());
+        const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        BOUNCE_TRY_VOID(checkPlyFile(bytes, where == path.string() ? where : fmt::format("{}: model '{}'", where, path.string())));
+    }
     if (format == Format::Obj) {
         // assimp 5.2 ignores OBJ smoothing groups: faces without normals get them from bounce first.
         std::ifstream in(path, std::ios::binary);
