@@ -1,5 +1,6 @@
 #include "app/Options.h"
 
+#include "core/Image.h"
 #include "techniques/Registry.h"
 
 #include <charconv>
@@ -16,9 +17,8 @@ Expected<glm::ivec2> parseSize(const std::string& text) {
     if (x == std::string::npos || !number(std::string_view(text).substr(0, x), size.x) ||
         !number(std::string_view(text).substr(x + 1), size.y))
         return makeError("--size '{}' is not of the form WIDTHxHEIGHT (e.g. 512x512)", text);
-    constexpr int kMaxSide = 16384;  // beyond any GL implementation's texture limit
-    if (size.x < 1 || size.y < 1 || size.x > kMaxSide || size.y > kMaxSide)
-        return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxSide);
+    if (size.x < 1 || size.y < 1 || size.x > kMaxImageSide || size.y > kMaxImageSide)
+        return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxImageSide);
     return size;
 }
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace bounce {
@@ -35,9 +36,14 @@ static Expected<Image> readExr(const fs::path& path) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
-        const int width = dw.max.x - dw.min.x + 1;
-        const int height = dw.max.y - dw.min.y + 1;
-        if (width <= 0 || height <= 0) return makeError("{}: empty EXR data window", path.string());
+        // In 64 bits: the corners may be any ints, so the difference can overflow an int.
+        const int64_t width64 = int64_t{dw.max.x} - dw.min.x + 1;
+        const int64_t height64 = int64_t{dw.max.y} - dw.min.y + 1;
+        if (width64 <= 0 || height64 <= 0) return makeError("{}: empty EXR data window", path.string());
+        if (width64 > kMaxImageSide || height64 > kMaxImageSide)
+            return makeError("{}: EXR data window is {}x{}; images may be at most {} pixels per side", path.string(),
+                             width64, height64, kMaxImageSide);
+        const int width = static_cast<int>(width64), height = static_cast<int>(height64);
         const Imf::ChannelList& channels = file.header().channels();
         const bool hasRgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
         const bool hasY = channels.findChannel("Y");
@@ -66,6 +72,9 @@ static Expected<Image> readExr(const fs::path& path) {
 
 static Expected<Image> readStb(const fs::path& path) {
     int w = 0, h = 0, n = 0;
+    // The size from the header first: stb_image allocates what the header claims before decoding.
+    if (stbi_info(path.c_str(), &w, &h, &n) && (w > kMaxImageSide || h > kMaxImageSide))
+        return makeError("{}: image is {}x{}; images may be at most {} pixels per side", path.string(), w, h, kMaxImageSide);
     stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 3);
     if (!data) return makeError("{}: cannot read image: {}", path.string(), stbi_failure_reason());
     Image image(w, h);

@@ -32,6 +32,11 @@ foreach(f ${study_inputs})
   expect_clean_error(${f} ${WORK}/study sweep ${f} --out ${WORK}/study --list)
 endforeach()
 
+file(GLOB image_inputs ${REGRESSIONS}/image/oversized-*)
+foreach(f ${image_inputs})
+  expect_clean_error(${f} ${WORK}/heatmap.png compare ${f} ${f} --heatmap ${WORK}/heatmap.png)
+endforeach()
+
 # |3e38 - (-3e38)| overflows float: the heat map's colour bar used to be infinite and abort.
 foreach(metric abs relmse flip)
   set(heatmap ${WORK}/heatmap-${metric}.png)

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -175,4 +176,30 @@ TEST(FuzzRegression, EveryCommittedInputGivesACleanAnswer) {
         }
     }
     EXPECT_GE(files, 6u);
+}
+
+// Found reviewing fuzz_image's memory use: a 4 KB EXR whose data window claims 16385 x 16385 pixels
+// made readImage allocate 3.2 GB before OpenEXR found the pixels missing. Headers are checked against
+// kMaxImageSide (the largest --size) before any pixel is allocated, for PNG and embedded images too.
+TEST(FuzzRegression, OversizedImageHeadersAreRefusedBeforeAllocating) {
+    const fs::path file = regression("image", "oversized-data-window.exr");
+    auto image = readImage(file);
+    ASSERT_FALSE(image.ok());
+    expectOneLineNaming(image.error(), file.string());
+    EXPECT_TRUE(contains(image.error().message, "EXR data window is 16385x16385; images may be at most 16384 pixels per side"))
+        << image.error().message;
+
+    // A PNG header of 16385 x 1 (its pixel data is missing too: the size is what must be reported).
+    const auto be32 = [](uint32_t v) {
+        return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+    };
+    const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + "IHDR" + be32(16385) + be32(1) +
+                            std::string("\x08\x02\x00\x00\x00", 5) + be32(0) /* CRC, not checked by stb */;
+    const fs::path pngPath = fs::temp_directory_path() / ("bounce-oversized-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".png");
+    { std::ofstream(pngPath, std::ios::binary) << png; }
+    auto decoded = readImage(pngPath);
+    fs::remove(pngPath);
+    ASSERT_FALSE(decoded.ok());
+    EXPECT_TRUE(contains(decoded.error().message, "image is 16385x1; images may be at most 16384 pixels per side"))
+        << decoded.error().message;
 }
