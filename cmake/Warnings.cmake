@@ -1,6 +1,11 @@
 # bounce_warnings(target): the project's warning set; errors when BOUNCE_WERROR (CI).
 function(bounce_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor
+  # GCC's -Wshadow=local; clang (the fuzz build, cmake/Fuzz.cmake) spells the nearest one differently.
+  set(shadow -Wshadow=local)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    set(shadow -Wshadow-uncaptured-local)
+  endif()
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic ${shadow} -Wnon-virtual-dtor
                          -Wno-missing-field-initializers)
   if(BOUNCE_WERROR)
     target_compile_options(${target} PRIVATE -Werror)

@@ -2,6 +2,7 @@
 
 #include "core/ImageIo.h"
 #include "reference/OneSidedCheck.h"
+#include "core/Image.h"
 #include "techniques/Registry.h"
 
 #include <spdlog/spdlog.h>
@@ -20,9 +21,8 @@ Expected<glm::ivec2> parseSize(const std::string& text) {
     if (x == std::string::npos || !number(std::string_view(text).substr(0, x), size.x) ||
         !number(std::string_view(text).substr(x + 1), size.y))
         return makeError("--size '{}' is not of the form WIDTHxHEIGHT (e.g. 512x512)", text);
-    constexpr int kMaxSide = kMaxImageSide;
-    if (size.x < 1 || size.y < 1 || size.x > kMaxSide || size.y > kMaxSide)
-        return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxSide);
+    if (size.x < 1 || size.y < 1 || size.x > kMaxImageSide || size.y > kMaxImageSide)
+        return makeError("--size '{}': width and height must be between 1 and {}", text, kMaxImageSide);
     return size;
 }
 

@@ -469,13 +469,7 @@ Expected<Study> loadStudy(const fs::path& file, const std::string& outputOverrid
     const std::string name = file.string();
     auto text = readTextFile(file);
     if (!text) return text.error();
-    json doc;
-    try {
-        doc = json::parse(*text);
-    } catch (const json::parse_error& e) {
-        const auto [line, column] = JsonLocator::lineColumn(*text, e.byte > 0 ? e.byte - 1 : 0);
-        return makeError("{}:{}:{}: malformed JSON ({})", name, line, column, e.what());
-    }
+    BOUNCE_TRY(const json doc, parseJsonDocument(*text, name));
     const Checker c(name, *text);
     BOUNCE_TRY_VOID(c.keys(doc, "", {"name", "output", "size", "frames", "startFrame", "seeds", "scenes", "techniques",
                                      "renderer", "reference", "temporal"}));

@@ -7,6 +7,11 @@
 
 namespace bounce {
 
+// Largest width or height of an image bounce renders or reads, pixels: GL 4.5's guaranteed texture
+// size. A file whose header claims more is refused before any pixel is allocated (a 2 KB EXR could
+// otherwise claim gigabytes).
+inline constexpr int kMaxImageSide = 16384;
+
 class Image {
 public:
     Image() = default;

@@ -12,9 +12,7 @@ namespace bounce {
 
 enum class ImageFormat { Exr, Png };
 
-// The largest image side bounce reads, renders or writes (--size, image files): beyond any GL
-// implementation's texture limit, and a file claiming more is refused before anything is allocated.
-inline constexpr int kMaxImageSide = 16384;
+// kMaxImageSide (core/Image.h): the largest image side bounce reads, renders or writes.
 
 // Picks the format from the extension (.exr, .png); anything else is an error naming the path.
 Expected<ImageFormat> imageFormatFor(const std::filesystem::path& path);

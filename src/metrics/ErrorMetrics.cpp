@@ -27,7 +27,10 @@ ErrorMap channelMeanMap(const Image& test, const Image& reference, PerChannel pe
         const glm::vec3 x = test.data()[i], r = reference.data()[i];
         double sum = 0.0;
         for (int c = 0; c < 3; ++c) sum += perChannel(static_cast<double>(x[c]), static_cast<double>(r[c]));
-        map.values()[i] = static_cast<float>(sum / 3.0);
+        // Errors of finite float inputs are finite in double but can pass float's range (|x - r| of
+        // 3e38 and -3e38): the map saturates at the largest float, so it stays finite and a heat map's
+        // colour bar (CompareCommand.cpp: up to a percentile) has a finite top.
+        map.values()[i] = static_cast<float>(std::min(sum / 3.0, static_cast<double>(std::numeric_limits<float>::max())));
     }
     return map;
 }

@@ -61,6 +61,7 @@ Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, 
                                      CompareMaps* maps = nullptr);
 
 // Per-pixel maps, each the mean over the three channels. The images must have the same size (checked).
+// Values beyond float's range saturate at its largest value, so every map of finite images is finite.
 ErrorMap absoluteErrorMap(const Image& test, const Image& reference);
 ErrorMap squaredErrorMap(const Image& test, const Image& reference);
 ErrorMap relativeSquaredErrorMap(const Image& test, const Image& reference, double epsilon = kRelMseEpsilon);

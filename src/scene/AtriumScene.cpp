@@ -28,7 +28,6 @@ constexpr int kColumnsPerRow = 10;       // z = -9, -7, ..., 9
 constexpr float kSlabThickness = 0.25f;
 constexpr float kBayHalfSpan = 0.5f * kColumnSpacing;
 constexpr float kBayInnerRadius = kBayHalfSpan - kColumnRadius;  // the arch springs from the column faces
-constexpr float kColumnHeight = kStoreyHeight - kBayHalfSpan;    // bay top meets the next floor
 constexpr float kBayDepth = 2.0f * kColumnRadius;
 // Drapes: hung behind the upper arcade, folds as a sine across their width that deepens downward.
 constexpr float kDrapeSetBack = 0.6f;      // behind the column axis

@@ -2,6 +2,7 @@
 
 #include "core/Check.h"
 #include "core/FileIo.h"
+#include "scene/JsonLocator.h"
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -112,12 +113,7 @@ json poseJson(const CameraPose& p) {
 }
 
 Expected<json> parseDocument(const std::string& text, const std::string& source, const char* format) {
-    json root;
-    try {
-        root = json::parse(text);
-    } catch (const json::parse_error& e) {
-        return makeError("{}: not valid JSON: {}", source, e.what());
-    }
+    BOUNCE_TRY(json root, parseJsonDocument(text, source));
     if (!root.is_object() || !root.contains("format") || root["format"] != format)
         return makeError("{}: not a {} file (expected \"format\": \"{}\")", source, format, format);
     if (!root.contains("version") || root["version"] != 1) return makeError("{}: unsupported version (expected 1)", source);

@@ -13,7 +13,58 @@ std::string escapePointerToken(const std::string& token) {
     }
     return out;
 }
+// Byte offset where the nesting first exceeds `limit` levels, or npos. Brackets inside strings do not count.
+size_t tooDeepAt(std::string_view text, int limit) {
+    int depth = 0;
+    bool inString = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > limit) return i;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return std::string_view::npos;
+}
 }  // namespace
+
+Expected<nlohmann::json> parseJsonDocument(const std::string& text, const std::string& name) {
+    // Before parsing: nlohmann would build the whole deep document first.
+    if (const size_t at = tooDeepAt(text, kMaxJsonDepth); at != std::string_view::npos) {
+        const auto [line, column] = JsonLocator::lineColumn(text, at);
+        return makeError("{}:{}:{}: malformed JSON: arrays and objects nested deeper than {} levels", name, line, column,
+                         kMaxJsonDepth);
+    }
+    try {
+        return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // e.byte is the 1-based offset just past the offending character.
+        const auto [line, column] = JsonLocator::lineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
+        std::string what = e.what();
+        // Drop nlohmann's own "[json.exception.parse_error.101] parse error at line L, column C: " prefix.
+        const auto colon = what.find(": ");
+        if (colon != std::string::npos) what = what.substr(colon + 2);
+        return makeError("{}:{}:{}: malformed JSON: {}", name, line, column, what);
+    } catch (const nlohmann::json::out_of_range& e) {
+        // nlohmann reports an overflowing number ("number overflow parsing '1e999'") without a position;
+        // the quoted token locates it.
+        std::string what = e.what();
+        const size_t open = what.find('\''), close = what.rfind('\'');
+        const std::string token = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+        const size_t at = token.empty() ? std::string::npos : text.find(token);
+        if (at == std::string::npos) return makeError("{}: malformed JSON: {}", name, what);
+        const auto [line, column] = JsonLocator::lineColumn(text, at);
+        return makeError("{}:{}:{}: number {} is not finite (overflows)", name, line, column, token);
+    } catch (const nlohmann::json::exception& e) {  // any other nlohmann failure, as one line
+        return makeError("{}: malformed JSON: {}", name, e.what());
+    }
+}
 
 JsonLocator::JsonLocator(std::string_view text) : m_text(text) {
     skipWhitespace();

@@ -612,28 +612,7 @@ private:
 
 Expected<Scene> loadJsonScene(const fs::path& path) {
     BOUNCE_TRY(const std::string text, readTextFile(path));
-    json root;
-    try {
-        root = json::parse(text);
-    } catch (const json::parse_error& e) {
-        // e.byte is the 1-based offset just past the offending character.
-        const auto [line, column] = JsonLocator::lineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
-        std::string what = e.what();
-        // Drop nlohmann's own "[json.exception.parse_error.101] parse error at line L, column C: " prefix.
-        const auto colon = what.find(": ");
-        if (colon != std::string::npos) what = what.substr(colon + 2);
-        return makeError("{}:{}:{}: malformed JSON: {}", path.string(), line, column, what);
-    } catch (const json::out_of_range& e) {
-        // nlohmann reports an overflowing number ("number overflow parsing '1e999'") without a position;
-        // the quoted token locates it.
-        std::string what = e.what();
-        const size_t open = what.find('\''), close = what.rfind('\'');
-        const std::string token = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
-        const size_t at = token.empty() ? std::string::npos : text.find(token);
-        if (at == std::string::npos) return makeError("{}: malformed JSON: {}", path.string(), what);
-        const auto [line, column] = JsonLocator::lineColumn(text, at);
-        return makeError("{}:{}:{}: number {} is not finite (overflows)", path.string(), line, column, token);
-    }
+    BOUNCE_TRY(const json root, parseJsonDocument(text, path.string()));
     JsonSceneReader reader(path, text);
     return reader.read(root);
 }

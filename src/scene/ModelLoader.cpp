@@ -4,6 +4,7 @@
 #include "core/Log.h"
 #include "core/ToneMap.h"
 #include "scene/ObjNormals.h"
+#include "scene/PlyCheck.h"
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
@@ -142,6 +143,11 @@ private:
 Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what) {
     if (tex->mHeight == 0) {  // compressed file bytes (PNG, JPEG) of length mWidth
         int w = 0, h = 0, n = 0;
+        const auto* bytes = reinterpret_cast<const stbi_uc*>(tex->pcData);
+        if (stbi_info_from_memory(bytes, static_cast<int>(tex->mWidth), &w, &h, &n) &&
+            (w > kMaxImageSide || h > kMaxImageSide))
+            return makeError("{}: embedded image is {}x{}; images may be at most {} pixels per side", what, w, h,
+                             kMaxImageSide);
         unsigned char* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(tex->pcData),
                                                     static_cast<int>(tex->mWidth), &w, &h, &n, 0);
         if (!data) return makeError("{}: cannot decode embedded image ({})", what, stbi_failure_reason());
@@ -149,6 +155,9 @@ Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what) {
         stbi_image_free(data);
         return image;
     }
+    if (tex->mWidth > static_cast<unsigned>(kMaxImageSide) || tex->mHeight > static_cast<unsigned>(kMaxImageSide))
+        return makeError("{}: embedded image is {}x{}; images may be at most {} pixels per side", what, tex->mWidth,
+                         tex->mHeight, kMaxImageSide);
     std::vector<unsigned char> rgb(static_cast<size_t>(tex->mWidth) * tex->mHeight * 3);
     for (size_t i = 0; i < static_cast<size_t>(tex->mWidth) * tex->mHeight; ++i) {
         rgb[3 * i] = tex->pcData[i].r;
@@ -393,6 +402,13 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
         return makeError("{}: cannot open model file '{}': {}", where, path.string(), std::strerror(errno));
 
     Assimp::Importer importer;
+    if (format == Format::Ply) {
+        // assimp 5.2 hangs or crashes on some malformed PLY files: bounce checks the structure first.
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return makeError("{}: cannot read model '{}'", where, path.string());
+        const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        BOUNCE_TRY_VOID(checkPlyFile(bytes, where == path.string() ? where : fmt::format("{}: model '{}'", where, path.string())));
+    }
     if (format == Format::Obj) {
         // assimp 5.2 ignores OBJ smoothing groups: faces without normals get them from bounce first.
         std::ifstream in(path, std::ios::binary);

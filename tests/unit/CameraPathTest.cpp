@@ -54,7 +54,7 @@ TEST(CameraPath, RejectsBadInputWithOneNamedMessage) {
         EXPECT_EQ(r.error().message.find('\n'), std::string::npos) << r.error().message;
     };
     const std::string head = R"({"format":"bounce-camera-path","version":1,)";
-    expectError("{", "not valid JSON");
+    expectError("{", "p.json:1:2: malformed JSON");
     expectError(R"({"format":"other","version":1})", "not a bounce-camera-path file");
     expectError(head + R"("keys":[]})", "'keys' must be a non-empty array");
     expectError(head + R"("keys":[{"time":0,"position":[0,0,1]}]})", "key 0: 'target' is missing");

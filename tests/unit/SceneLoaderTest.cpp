@@ -685,7 +685,7 @@ TEST(JsonScene, CommittedExampleLoads) {
     const Light& key = scene->lights[0];
     ASSERT_TRUE(key.isDynamic());
     EXPECT_GT(glm::length(key.at(1.0f).position - key.at(0.0f).position), 0.5f);  // moves on its loop
-    EXPECT_EQ(scene->settings.at("vpl.count"), "256");
+    EXPECT_EQ(scene->settings.at("rsm.vplGrid"), "16");
 }
 
 TEST(JsonScene, MalformedJsonReportsLineAndColumn) {

@@ -88,7 +88,6 @@ private:
     float m_sceneDiagonal = 1.0f;
     glm::ivec2 m_tileSize{1};
     uint32_t m_mapsRenderedLastFrame = 0;
-    bool m_warned = false;
 
     gl::Program m_paraboloid, m_split, m_accumulate, m_combine, m_filter;
     gl::Texture m_shadowMaps;  // GL_DEPTH_COMPONENT16 2D array, one layer per slot

@@ -1,0 +1,205 @@
+// Inputs that crashed, hung or aborted bounce, found by the libFuzzer targets (tests/fuzz, docs/reliability.md
+// "Fuzzing") or while triaging them; each is committed under tests/fuzz/regressions/TARGET/ and fed here
+// through the ordinary build's loaders. Loaders must answer bad input with one error line naming the
+// file; tests/fuzz/Regressions.cmake runs the same files through the `bounce` command line.
+#include "core/FileIo.h"
+#include "core/ImageIo.h"
+#include "metrics/ErrorMetrics.h"
+#include "metrics/Heatmap.h"
+#include "scene/JsonLocator.h"
+#include "scene/PlyCheck.h"
+#include "scene/SceneLoader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+namespace fs = std::filesystem;
+using namespace bounce;
+
+namespace {
+
+fs::path regression(const std::string& target, const std::string& name) {
+    return fs::path(BOUNCE_SOURCE_DIR) / "tests/fuzz/regressions" / target / name;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The project's rule for bad input: one line that names the file.
+void expectOneLineNaming(const Error& error, const std::string& file) {
+    EXPECT_EQ(error.message.find('\n'), std::string::npos) << error.message;
+    EXPECT_TRUE(contains(error.message, file)) << error.message;
+}
+
+std::string nested(int depth) { return std::string(static_cast<size_t>(depth), '[') + std::string(static_cast<size_t>(depth), ']'); }
+
+Image mirrored(const Image& image) {
+    Image out(image.width(), image.height());
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) out.at(x, y) = image.at(image.width() - 1 - x, y);
+    return out;
+}
+
+}  // namespace
+
+// fuzz_study: "1e339" made nlohmann throw out_of_range, which the study parser did not catch
+// (`bounce sweep` then died on the exception instead of naming the file and line).
+TEST(FuzzRegression, StudyNumberOverflowIsAnErrorWithItsPosition) {
+    const fs::path file = regression("study", "number-overflow");
+    auto text = readTextFile(file);
+    ASSERT_TRUE(text.ok()) << text.error().message;
+    auto doc = parseJsonDocument(*text, file.string());
+    ASSERT_FALSE(doc.ok());
+    expectOneLineNaming(doc.error(), file.string());
+    EXPECT_TRUE(contains(doc.error().message, "number-overflow:1:1: number 1e339 is not finite")) << doc.error().message;
+}
+
+// Found triaging the above: JsonLocator recursed once per nesting level and kept a pointer string per
+// level, so a 100 KB file of brackets overflowed the stack (scene files and studies alike).
+TEST(FuzzRegression, DeeplyNestedSceneFileIsAnError) {
+    const fs::path file = regression("scene", "deep-nesting.json");
+    Expected<Scene> scene = loadScene(file.string());
+    ASSERT_FALSE(scene.ok());
+    expectOneLineNaming(scene.error(), file.string());
+    // Line 1, column 75: the 64th "[" after {"objects": is the 65th level (the "{" is the first).
+    EXPECT_TRUE(contains(scene.error().message, "deep-nesting.json:1:75: malformed JSON: arrays and objects nested deeper than 64"))
+        << scene.error().message;
+}
+
+TEST(FuzzRegression, DeeplyNestedStudyIsAnError) {
+    const fs::path file = regression("study", "deep-nesting.json");
+    auto text = readTextFile(file);
+    ASSERT_TRUE(text.ok()) << text.error().message;
+    auto doc = parseJsonDocument(*text, file.string());
+    ASSERT_FALSE(doc.ok());
+    expectOneLineNaming(doc.error(), file.string());
+    EXPECT_TRUE(contains(doc.error().message, "nested deeper than")) << doc.error().message;
+}
+
+TEST(FuzzRegression, NestingLimitIsExact) {
+    // kMaxJsonDepth levels parse; one more is refused. Brackets inside strings do not count.
+    EXPECT_TRUE(parseJsonDocument(nested(kMaxJsonDepth), "a.json").ok());
+    EXPECT_FALSE(parseJsonDocument(nested(kMaxJsonDepth + 1), "a.json").ok());
+    EXPECT_TRUE(parseJsonDocument("{\"k\": \"" + std::string(200, '[') + "\"}", "a.json").ok());
+    EXPECT_TRUE(parseJsonDocument("[\"\\\"[\"]", "a.json").ok()) << "an escaped quote does not end the string";
+}
+
+// fuzz_model: assimp 5.2's PLY reader loops forever on a header without "end_header" (ascii) and reads
+// past its buffer on a truncated binary one (a segfault). bounce checks the structure first.
+TEST(FuzzRegression, PlyHeaderWithoutEndIsAnError) {
+    for (const char* name : {"ascii-header-unterminated.ply", "binary-header-unterminated.ply"}) {
+        const fs::path file = regression("model", name);
+        Expected<Scene> scene = loadScene(file.string());
+        ASSERT_FALSE(scene.ok()) << name;
+        expectOneLineNaming(scene.error(), file.string());
+        EXPECT_TRUE(contains(scene.error().message, "end_header")) << scene.error().message;
+    }
+}
+
+TEST(PlyCheck, AcceptsWellFormedFilesAndNamesWhatIsWrong) {
+    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment two floats\nelement vertex 2\n"
+                               "property float x\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string body(8, '\0');             // two vertices of one float
+    body += std::string("\x03", 1);        // a face of three indices
+    body += std::string(12, '\0');
+    EXPECT_TRUE(checkPlyFile(header + body, "m.ply").ok());
+    EXPECT_TRUE(checkPlyFile("ply\r\nformat ascii 1.0\r\nelement vertex 0\r\nend_header\r\n", "m.ply").ok())
+        << "CRLF line ends";
+
+    const auto error = [](const std::string& bytes) {
+        auto r = checkPlyFile(bytes, "m.ply");
+        return r.ok() ? std::string("(accepted)") : r.error().message;
+    };
+    EXPECT_TRUE(contains(error(header + body.substr(0, body.size() - 1)), "m.ply: PLY file is truncated: face 0 of 1"));
+    EXPECT_TRUE(contains(error(header + std::string(7, '\0')), "truncated: vertex 1 of 2"));
+    EXPECT_TRUE(contains(error("solid\n"), "not a PLY file"));
+    EXPECT_TRUE(contains(error("ply\nformat ascii 2.0\nend_header\n"), "PLY header line 2: expected \"format"));
+    EXPECT_TRUE(contains(error("ply\nformat ascii 1.0\nproperty float x\nend_header\n"), "line 3: \"property\" before any \"element\""));
+    EXPECT_TRUE(contains(error("ply\nformat ascii 1.0\nelement vertex 99\nend_header\n"), "declares 99 items"));
+    EXPECT_TRUE(contains(error("ply\nformat ascii 1.0\nelement v 1\nproperty list float int i\nend_header\n1"), "not an integer type"));
+    EXPECT_TRUE(contains(error("ply\nformat ascii 1.0\nbogus\nend_header\n"), "unknown keyword \"bogus\""));
+    // A list count that runs past the end of the file (255 indices, none there) is caught before assimp.
+    EXPECT_TRUE(contains(error(header + std::string(8, '\0') + "\xff"), "truncated: face 0 of 1"));
+}
+
+// fuzz_image: an image whose absolute error against its mirror image passes float's range (about 3e38
+// against -3e38) gave an infinite heat-map colour bar, and renderHeatmap's check aborted
+// `bounce compare --heatmap ... --heatmap-metric abs`.
+TEST(FuzzRegression, HeatmapOfOverflowingErrorsIsFinite) {
+    const fs::path file = regression("image", "heatmap-range-overflow.exr");
+    auto image = readImage(file);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    ASSERT_TRUE(checkFinite(*image, file.string()).ok());
+    const Image mirror = mirrored(*image);
+    for (const ErrorMap& map : {absoluteErrorMap(*image, mirror), squaredErrorMap(*image, mirror),
+                                relativeSquaredErrorMap(*image, mirror)}) {
+        for (float v : map.values()) EXPECT_TRUE(std::isfinite(v)) << v;
+        const float high = map.percentile(0.99);
+        EXPECT_TRUE(std::isfinite(high));
+        if (high > 0.0f) {
+            EXPECT_FALSE(renderHeatmap(map, 0.0f, high).empty());
+        }
+    }
+
+    auto test = readImage(regression("image", "huge-test.exr"));
+    auto reference = readImage(regression("image", "huge-reference.exr"));
+    ASSERT_TRUE(test.ok() && reference.ok());
+    const ErrorMap abs = absoluteErrorMap(*test, *reference);
+    // |3e38 - (-3e38)| = 6e38 is past float's range: it saturates at the largest float.
+    EXPECT_EQ(abs.at(0, 0), std::numeric_limits<float>::max());
+    EXPECT_EQ(abs.at(1, 0), 0.0f);
+    EXPECT_FALSE(renderHeatmap(abs, 0.0f, abs.percentile(0.99)).empty());
+}
+
+// Every committed regression input, whatever it once broke: the loader returns (no crash, no hang) and
+// an error is one line naming the file. Model and scene files go through loadScene, images through
+// readImage; study files are the command line's (Regressions.cmake).
+TEST(FuzzRegression, EveryCommittedInputGivesACleanAnswer) {
+    size_t files = 0;
+    for (const char* target : {"scene", "model", "image"}) {
+        const fs::path dir = fs::path(BOUNCE_SOURCE_DIR) / "tests/fuzz/regressions" / target;
+        if (!fs::exists(dir)) continue;
+        for (const auto& entry : fs::directory_iterator(dir)) {
+            ++files;
+            const std::string path = entry.path().string();
+            if (std::string(target) == "image") {
+                auto image = readImage(path);
+                if (!image.ok()) expectOneLineNaming(image.error(), path);
+            } else {
+                Expected<Scene> scene = loadScene(path);
+                if (!scene.ok()) expectOneLineNaming(scene.error(), path);
+            }
+        }
+    }
+    EXPECT_GE(files, 6u);
+}
+
+// Found reviewing fuzz_image's memory use: a 4 KB EXR whose data window claims 16385 x 16385 pixels
+// made readImage allocate 3.2 GB before OpenEXR found the pixels missing. Headers are checked against
+// kMaxImageSide (the largest --size) before any pixel is allocated, for PNG and embedded images too.
+TEST(FuzzRegression, OversizedImageHeadersAreRefusedBeforeAllocating) {
+    const fs::path file = regression("image", "oversized-data-window.exr");
+    auto image = readImage(file);
+    ASSERT_FALSE(image.ok());
+    expectOneLineNaming(image.error(), file.string());
+    EXPECT_TRUE(contains(image.error().message, "EXR data window is 16385x16385; images may be at most 16384 pixels per side"))
+        << image.error().message;
+
+    // A PNG header of 16385 x 1 (its pixel data is missing too: the size is what must be reported).
+    const auto be32 = [](uint32_t v) {
+        return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+    };
+    const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + "IHDR" + be32(16385) + be32(1) +
+                            std::string("\x08\x02\x00\x00\x00", 5) + be32(0) /* CRC, not checked by stb */;
+    const fs::path pngPath = fs::temp_directory_path() / ("bounce-oversized-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".png");
+    { std::ofstream(pngPath, std::ios::binary) << png; }
+    auto decoded = readImage(pngPath);
+    fs::remove(pngPath);
+    ASSERT_FALSE(decoded.ok());
+    EXPECT_TRUE(contains(decoded.error().message, "image is 16385x1; images may be at most 16384 pixels per side"))
+        << decoded.error().message;
+}
