@@ -16,6 +16,8 @@ packages=(
   # `bounce report` (matplotlib plots) and its test in headless Chromium
   parallel munge slurmctld slurmd slurm-client
   python3 python3-matplotlib chromium
+  # the sanitizer and fuzz build (CMakePresets.json `sanitize`): clang with ASan, UBSan and libFuzzer
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

@@ -54,15 +54,17 @@ static Expected<Image> readExr(const fs::path& path) {
         if (!hasRgb && !hasY) return makeError("{}: EXR has neither R,G,B nor Y channels", path.string());
         Image image(width, height);
         Imf::FrameBuffer fb;
-        char* base = reinterpret_cast<char*>(image.data()) -
-                     (static_cast<ptrdiff_t>(dw.min.x) + static_cast<ptrdiff_t>(dw.min.y) * width) * sizeof(glm::vec3);
-        const size_t xs = sizeof(glm::vec3), ys = sizeof(glm::vec3) * width;
+        // Slice::Make offsets the buffer by the data window's origin itself, in integers. Doing it here,
+        // as pointer arithmetic from image.data(), made a pointer outside the image for any window not
+        // starting at (0, 0): undefined behaviour (found by fuzz_image under UBSan; a window from y = -1).
+        char* base = reinterpret_cast<char*>(image.data());
+        const size_t xs = sizeof(glm::vec3), ys = sizeof(glm::vec3) * static_cast<size_t>(width);
         if (hasRgb) {
-            fb.insert("R", Imf::Slice(Imf::FLOAT, base + 0, xs, ys, 1, 1, 0.0));
-            fb.insert("G", Imf::Slice(Imf::FLOAT, base + 4, xs, ys, 1, 1, 0.0));
-            fb.insert("B", Imf::Slice(Imf::FLOAT, base + 8, xs, ys, 1, 1, 0.0));
+            fb.insert("R", Imf::Slice::Make(Imf::FLOAT, base + 0, dw, xs, ys));
+            fb.insert("G", Imf::Slice::Make(Imf::FLOAT, base + 4, dw, xs, ys));
+            fb.insert("B", Imf::Slice::Make(Imf::FLOAT, base + 8, dw, xs, ys));
         } else {
-            fb.insert("Y", Imf::Slice(Imf::FLOAT, base + 0, xs, ys, 1, 1, 0.0));
+            fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, base + 0, dw, xs, ys));
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);

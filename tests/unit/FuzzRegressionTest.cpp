@@ -10,6 +10,10 @@
 #include "scene/PlyCheck.h"
 #include "scene/SceneLoader.h"
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,6 +21,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace bounce;
@@ -203,3 +208,95 @@ TEST(FuzzRegression, OversizedImageHeadersAreRefusedBeforeAllocating) {
     EXPECT_TRUE(contains(decoded.error().message, "image of 16385x1 pixels is larger than the 16384 x 16384 bounce reads"))
         << decoded.error().message;
 }
+
+// fuzz_image (UBSan): readImage offset its pixel pointer by the EXR data window's origin itself, which
+// points outside the image for a window not starting at (0, 0). The fuzzer's file (a window from
+// y = -1 whose pixel blocks are then wrong) must be a clean error; a well-formed file with an origin
+// of (-1, -1) must read with every pixel where it belongs (row-major from the window's corner).
+TEST(FuzzRegression, ExrDataWindowOffOriginReads) {
+    const fs::path file = regression("image", "data-window-negative-origin.exr");
+    auto broken = readImage(file);
+    ASSERT_FALSE(broken.ok());
+    expectOneLineNaming(broken.error(), file.string());
+
+    const fs::path offset = fs::temp_directory_path() / "bounce-exr-offset-origin.exr";
+    const Imath::Box2i window(Imath::V2i(-1, -1), Imath::V2i(1, 0));  // 3x2 pixels
+    std::vector<float> r(6), g(6), b(6);
+    for (int i = 0; i < 6; ++i) {
+        r[i] = static_cast<float>(i);
+        g[i] = 10.0f + static_cast<float>(i);
+        b[i] = 20.0f + static_cast<float>(i);
+    }
+    {
+        Imf::Header header(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(2, 1)), window);
+        for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        Imf::OutputFile out(offset.c_str(), header);
+        Imf::FrameBuffer fb;
+        fb.insert("R", Imf::Slice::Make(Imf::FLOAT, r.data(), window, sizeof(float), 3 * sizeof(float)));
+        fb.insert("G", Imf::Slice::Make(Imf::FLOAT, g.data(), window, sizeof(float), 3 * sizeof(float)));
+        fb.insert("B", Imf::Slice::Make(Imf::FLOAT, b.data(), window, sizeof(float), 3 * sizeof(float)));
+        out.setFrameBuffer(fb);
+        out.writePixels(2);
+    }
+    auto image = readImage(offset);
+    fs::remove(offset);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    ASSERT_EQ(image->width(), 3);
+    ASSERT_EQ(image->height(), 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) {
+            const int i = y * 3 + x;
+            EXPECT_EQ(image->at(x, y), glm::vec3(r[i], g[i], b[i])) << x << "," << y;
+        }
+}
+
+// fuzz_model (ASan): assimp 5.2.5 reads past its line buffer when an OBJ file's only line is a long
+// face, line or point statement ("pformat: a{ 1.1", or a face of 19 indices). Such a file has no
+// vertex, so bounce refuses it before assimp reads it; a file with a vertex still loads.
+TEST(FuzzRegression, ObjWithoutVerticesIsRefusedBeforeAssimp) {
+    for (const char* name : {"only-line-a-statement.obj", "only-line-a-long-face.obj"}) {
+        const fs::path file = regression("model", name);
+        Expected<Scene> scene = loadScene(file.string());
+        ASSERT_FALSE(scene.ok()) << name;
+        expectOneLineNaming(scene.error(), file.string());
+        EXPECT_TRUE(contains(scene.error().message, "OBJ file has no vertex")) << scene.error().message;
+    }
+    const fs::path ok = fs::temp_directory_path() / "bounce-obj-one-triangle.obj";
+    ASSERT_TRUE(writeTextFileAtomic(ok, "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n").ok());
+    Expected<Scene> scene = loadScene(ok.string());
+    fs::remove(ok);
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+}
+
+// fuzz_model (ASan): assimp gave a .glb or .gltf its glTF reader did not recognise to the reader that
+// claimed the content, here the OBJ reader and the over-read above. bounce checks the signature first.
+TEST(FuzzRegression, GltfFilesMustLookLikeGltf) {
+    for (const char* name : {"obj-text-named.glb", "obj-text-named.gltf"}) {
+        const fs::path file = regression("model", name);
+        Expected<Scene> scene = loadScene(file.string());
+        ASSERT_FALSE(scene.ok()) << name;
+        expectOneLineNaming(scene.error(), file.string());
+        EXPECT_TRUE(contains(scene.error().message, "not a ")) << scene.error().message;
+        EXPECT_TRUE(contains(scene.error().message, "glTF file")) << scene.error().message;
+    }
+}
+
+// fuzz_model: assimp allocates what a GLB chunk header claims before reading it (3.4 GB for a 397-byte
+// file); bounce checks that the header's and every chunk's length fit in the file.
+TEST(FuzzRegression, GlbChunkLengthsMustFitTheFile) {
+    const fs::path file = regression("model", "chunk-claims-3gb.glb");
+    Expected<Scene> scene = loadScene(file.string());
+    ASSERT_FALSE(scene.ok());
+    expectOneLineNaming(scene.error(), file.string());
+    EXPECT_TRUE(contains(scene.error().message, "GLB")) << scene.error().message;
+    // The corpus's well-formed GLB (a triangle and a point light) still loads.
+    auto bytes = readTextFile(fs::path(BOUNCE_SOURCE_DIR) / "tests/fuzz/corpus/model/triangle.glb.in");
+    ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+    const fs::path glb = fs::temp_directory_path() / "bounce-triangle.glb";
+    ASSERT_TRUE(writeFileAtomic(glb, std::string_view(*bytes).substr(1)).ok());  // past the selector byte
+    Expected<Scene> good = loadScene(glb.string());
+    fs::remove(glb);
+    ASSERT_TRUE(good.ok()) << good.error().message;
+    EXPECT_EQ(good->triangleCount(), 1u);
+}
+

@@ -94,6 +94,9 @@ TEST(LambertKernel, InstructionSetVariantsAgreeBitForBit) {
         EXPECT_GT(shadows, 0);
         EXPECT_GT(going, 0);
         EXPECT_GT(stopped, 0);
+        // GCC only, as in LambertKernel.cpp: clang 14 (the sanitizer build) has no "x86-64-v4" feature
+        // string and builds the v3/v4 files for the base instruction set.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
         if (__builtin_cpu_supports("x86-64-v3")) {
             const auto v3run = run(v3::hit, v3::reflect, indirectOnly);
             EXPECT_EQ(std::memcmp(base.get(), v3run.get(), sizeof(Lanes)), 0) << "x86-64-v3";
@@ -102,6 +105,7 @@ TEST(LambertKernel, InstructionSetVariantsAgreeBitForBit) {
             const auto v4run = run(v4::hit, v4::reflect, indirectOnly);
             EXPECT_EQ(std::memcmp(base.get(), v4run.get(), sizeof(Lanes)), 0) << "x86-64-v4";
         }
+#endif
     }
     const std::string chosen = instructionSet();
     EXPECT_TRUE(chosen == "x86-64-v4" || chosen == "x86-64-v3" || chosen == "x86-64") << chosen;
