@@ -108,6 +108,18 @@ json leakJson(const Expected<double>& score) {
     return {{"error", score.error().message}};
 }
 
+// The pixels where the G-buffer holds a surface (position w = 1, render/gbuffer.frag), top row first
+// like readTexture: elsewhere the position is 0, which a scene file's leak box may contain.
+PixelMask coveredPixels(const gl::Texture& position) {
+    const int w = position.width(), h = position.height();
+    std::vector<glm::vec4> rgba(static_cast<size_t>(w) * h);
+    glGetTextureImage(position.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(glm::vec4)), rgba.data());
+    PixelMask covered(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) covered.set(x, y, rgba[static_cast<size_t>(h - 1 - y) * w + x].w > 0.5f);  // GL rows start at the bottom
+    return covered;
+}
+
 Expected<void> runRender(const Study& study, const Job& job) {
     const fs::path folder = jobFolder(study, job);
     BOUNCE_TRY(auto loaded, load(study, job));
@@ -147,8 +159,9 @@ Expected<void> runRender(const Study& study, const Job& job) {
     if (const auto& regions = loaded->scene.leakRegions) {
         // The masks come from this render's G-buffer positions: the pixels that see each room.
         const Image positions = readTexture(pipeline.gbuffer().position());
-        const PixelMask dark = boxMask(positions, regions->darkMin, regions->darkMax);
-        const PixelMask lit = boxMask(positions, regions->litMin, regions->litMax);
+        const PixelMask covered = coveredPixels(pipeline.gbuffer().position());
+        const PixelMask dark = boxMask(positions, regions->darkMin, regions->darkMax, &covered);
+        const PixelMask lit = boxMask(positions, regions->litMin, regions->litMax, &covered);
         Image masks(positions.width(), positions.height());
         for (int y = 0; y < masks.height(); ++y)
             for (int x = 0; x < masks.width(); ++x) masks.at(x, y) = {dark.inside(x, y) ? 1.0f : 0.0f, lit.inside(x, y) ? 1.0f : 0.0f, 0.0f};

@@ -610,6 +610,24 @@ TEST(LightLeak, TwoRoomsMasksSplitAtTheWall) {
     EXPECT_TRUE(m.dark.inside(3, 0));
 }
 
+TEST(LightLeak, BoxMaskIsOpenAndKeepsOnlyCoveredPixels) {
+    // Inside, on the face (open box: outside), outside, and the origin twice: a surface there and
+    // an uncovered pixel whose G-buffer position is 0 as well.
+    Image positions(5, 1);
+    positions.at(0, 0) = {0.5f, 0.5f, 0.5f};
+    positions.at(1, 0) = {1.0f, 0.5f, 0.5f};
+    positions.at(2, 0) = {2.0f, 0.5f, 0.5f};
+    PixelMask covered(5, 1, true);
+    covered.set(4, 0, false);
+    const glm::vec3 lo(-1.0f), hi(1.0f);
+    const PixelMask all = boxMask(positions, lo, hi);
+    EXPECT_EQ(all.count(), 3u);  // without coverage the uncovered origin counts: why `covered` exists
+    const PixelMask seen = boxMask(positions, lo, hi, &covered);
+    EXPECT_EQ(seen.count(), 2u);
+    EXPECT_TRUE(seen.inside(0, 0) && seen.inside(3, 0));
+    EXPECT_FALSE(seen.inside(1, 0) || seen.inside(2, 0) || seen.inside(4, 0));
+}
+
 TEST(RmsSum8, SumsTheChannelsRmsOn8BitValues) {
     // Two pixels; red differs by 10/255 and 0, green by 0 and 20/255, blue equal: RMS red
     // sqrt(100/2) = 7.071, green sqrt(400/2) = 14.142, sum 21.213 (seed 004's error, 5.1).
