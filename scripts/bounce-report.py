@@ -204,6 +204,8 @@ def build_rows(renders, compares, temporals, references):
             conv = t.get("convergence") or {}
             row["convergenceLatencyFrames"] = conv.get("latencyFrames")
             row["convergenceSettled"] = conv.get("settled")
+            row["convergenceEventFrame"] = conv.get("eventFrame")
+            row["convergenceAnimation"] = conv.get("animation")
         rows.append(row)
     return rows
 
@@ -469,10 +471,13 @@ def main():
         if scene_temporal:
             page.append("<h3>Temporal</h3>")
             page.append(img_tag(temporal_plot(scene, scene_temporal), f"{scene} temporal", "plot"))
-            page.append(table(["technique", "variant", "flicker", "reference flicker", "convergence latency (frames)", "settled"],
+            page.append(table(["technique", "variant", "flicker", "reference flicker", "convergence latency (frames after the event)",
+                               "settled", "event frame", "animation"],
                               [[esc(split_id(k)[2]), esc(split_id(k)[3]), fmt(t.get("flicker")), fmt(t.get("referenceFlicker")),
                                 fmt((t.get("convergence") or {}).get("latencyFrames")),
-                                fmt((t.get("convergence") or {}).get("settled"))] for k, t in sorted(scene_temporal.items())], 2))
+                                fmt((t.get("convergence") or {}).get("settled")),
+                                fmt((t.get("convergence") or {}).get("eventFrame")),
+                                esc(str((t.get("convergence") or {}).get("animation", "play")))] for k, t in sorted(scene_temporal.items())], 2))
 
         page.append("<h3>Per-pass GPU times (median ms) and counters (last frame)</h3>")
         for technique in sorted({r["technique"] for r in scene_rows if r["status"] == "ok"}):

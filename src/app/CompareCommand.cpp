@@ -1,11 +1,14 @@
 // `bounce compare TEST REF`: every metric of metrics/ErrorMetrics.h for two images of the same size,
 // optionally as JSON and with an error heat map. docs/metrics.md documents the output.
 #include "app/Cli.h"
+#include "app/Options.h"
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "metrics/ErrorMetrics.h"
 #include "metrics/Heatmap.h"
+#include "metrics/LightLeak.h"
+#include "reference/PrimaryHits.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -32,6 +35,16 @@ struct CompareArgs {
     std::string toneCurve;  // empty: the default for radiance images (aces)
     double pixelsPerDegree = kFlipDefaultPixelsPerDegree;
     bool exposureGiven = false, toneCurveGiven = false;
+    // Light leak (docs/metrics.md): the scene whose declared leak regions are scored, as the images show it.
+    std::string leakScene;
+    std::vector<std::string> sceneParams;
+    uint32_t frame = 0;
+    bool sceneParamsGiven = false, frameGiven = false;
+};
+
+struct LeakResult {
+    double test = 0.0, reference = 0.0;
+    size_t darkPixels = 0, litPixels = 0;
 };
 
 struct Input {
@@ -79,6 +92,30 @@ std::string toneMapText(const ToneMap& t) {
     return fmt::format("{} at {:+g} EV", toneCurveName(t.curve), t.exposureEv);
 }
 
+// The leak scene's masks at the images' size: each pixel's first surface through the scene's camera
+// at the frame (ray cast, as the rasteriser samples pixel centres), inside the dark or the lit box.
+Expected<LeakResult> leakScores(const Scene& scene, uint32_t frame, const Input& test, const Input& reference) {
+    const LeakRegions& r = *scene.leakRegions;
+    const int w = test.image.width(), h = test.image.height();
+    BOUNCE_TRY(const PrimaryHits hits, primaryHits(scene, scene.timeOfFrame(frame), w, h));
+    PixelMask covered(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) covered.set(x, y, hits.covered[static_cast<size_t>(y) * w + x] != 0);
+    const PixelMask dark = boxMask(hits.positions, r.darkMin, r.darkMax, &covered);
+    const PixelMask lit = boxMask(hits.positions, r.litMin, r.litMax, &covered);
+    LeakResult out{0.0, 0.0, dark.count(), lit.count()};
+    if (out.darkPixels == 0 || out.litPixels == 0)
+        return makeError("the camera of scene '{}' sees {} pixels of the dark region and {} of the lit one at frame {}, {}x{}: "
+                         "both must be in view", scene.name, out.darkPixels, out.litPixels, frame, w, h);
+    auto t = lightLeakScore(test.image, dark, lit);
+    if (!t) return makeError("test {}: {}", test.path, t.error().message);
+    auto ref = lightLeakScore(reference.image, dark, lit);
+    if (!ref) return makeError("reference {}: {}", reference.path, ref.error().message);
+    out.test = *t;
+    out.reference = *ref;
+    return out;
+}
+
 struct HeatmapResult {
     std::string metricName;
     float low = 0.0f, high = 1.0f;
@@ -107,6 +144,18 @@ int runCompare(const CompareArgs& args) {
         if (*format != ImageFormat::Png) return fail(fmt::format("--heatmap: {}: heat maps are written as .png", args.heatmapPath));
         if (auto writable = checkWritable(args.heatmapPath); !writable) return fail("--heatmap: " + writable.error().message);
     }
+    std::optional<Scene> leakScene;
+    if (args.leakScene.empty()) {
+        if (args.sceneParamsGiven) return fail("--scene-param: applies to --leak-scene, which is not given");
+        if (args.frameGiven) return fail("--frame: applies to --leak-scene, which is not given");
+    } else {
+        auto scene = loadSceneWithParams(args.leakScene, args.sceneParams);
+        if (!scene) return fail("--leak-scene: " + scene.error().message);
+        if (!scene->leakRegions)
+            return fail(fmt::format("--leak-scene: scene '{}' declares no leak regions (two-rooms does; a scene file "
+                                    "declares them with \"leakRegions\", docs/scene.md)", args.leakScene));
+        leakScene = std::move(*scene);
+    }
 
     auto test = loadInput(args.testPath, radianceToneMap);
     if (!test) return fail(test.error().message);
@@ -121,6 +170,16 @@ int runCompare(const CompareArgs& args) {
     if (test->radiance != reference->radiance)
         spdlog::warn("compare: comparing a PNG display image with EXR radiance; the linear metrics (MSE, RMSE, relMSE, "
                      "MAE, HDR-FLIP) treat the PNG's decoded display values as radiance");
+
+    std::optional<LeakResult> leak;
+    if (leakScene) {
+        // A ratio of radiance: display values (tone-mapped, clamped) would give another number.
+        for (const Input* in : {&*test, &*reference})
+            if (!in->radiance) return fail(fmt::format("--leak-scene: {} is a display image (PNG); the leak score needs EXR radiance", in->path));
+        auto scores = leakScores(*leakScene, args.frame, *test, *reference);
+        if (!scores) return fail("--leak-scene: " + scores.error().message);
+        leak = *scores;
+    }
 
     CompareOptions options;
     options.testToneMap = test->toneMap;
@@ -167,6 +226,9 @@ int runCompare(const CompareArgs& args) {
         j["metrics"] = toJson(m);
         if (heatmap)
             j["heatmap"] = {{"path", args.heatmapPath}, {"metric", heatmap->metricName}, {"low", heatmap->low}, {"high", heatmap->high}};
+        if (leak)
+            j["leak"] = {{"scene", args.leakScene}, {"frame", args.frame}, {"test", leak->test}, {"reference", leak->reference},
+                         {"darkPixels", leak->darkPixels}, {"litPixels", leak->litPixels}};
         fmt::print("{}\n", j.dump(2));
         return 0;
     }
@@ -186,6 +248,9 @@ int runCompare(const CompareArgs& args) {
     fmt::print("FLIP LDR   {:<12.6f} displayed, mean, {:.2f} ppd\n", m.flipLdr, args.pixelsPerDegree);
     fmt::print("FLIP HDR   {:<12.6f} linear, mean, {:.2f} ppd, {} exposures {:+.2f} .. {:+.2f} EV\n", m.flipHdr,
                args.pixelsPerDegree, m.hdrFlipExposures.count, m.hdrFlipExposures.startEv, m.hdrFlipExposures.stopEv);
+    if (leak)
+        fmt::print("leak       {:<12.6g} test, dark/lit mean luminance on {}'s leak regions at frame {} ({} and {} pixels); reference {:.6g}\n",
+                   leak->test, args.leakScene, args.frame, leak->darkPixels, leak->litPixels, leak->reference);
     if (heatmap)
         fmt::print("heat map   {} ({} per pixel, colour bar {:g} .. {:g})\n", args.heatmapPath, heatmap->metricName,
                    heatmap->low, heatmap->high);
@@ -212,9 +277,17 @@ void registerCompareCommand(CLI::App& root, CommandAction& action) {
         cmd->add_option("--tonemap", args->toneCurve, "Tone curve for EXR inputs: clamp, reinhard, aces (default aces)");
     cmd->add_option("--ppd", args->pixelsPerDegree, "FLIP observer, pixels per degree (default: 0.7 m from a 0.7 m wide 4K screen)")
         ->capture_default_str();
-    cmd->callback([&action, args, exposure, tonemap] {
+    cmd->add_option("--leak-scene", args->leakScene,
+                    "Also score light leaks on this scene's declared leak regions (two-rooms, or a scene file with "
+                    "\"leakRegions\"), seen by its camera at the images' size");
+    CLI::Option* sceneParam = cmd->add_option("--scene-param", args->sceneParams, "--leak-scene's parameter KEY=VALUE (repeatable)");
+    CLI::Option* frame = cmd->add_option("--frame", args->frame, "The frame the images show, for --leak-scene's camera and objects")
+                             ->capture_default_str();
+    cmd->callback([&action, args, exposure, tonemap, sceneParam, frame] {
         args->exposureGiven = exposure->count() > 0;
         args->toneCurveGiven = tonemap->count() > 0;
+        args->sceneParamsGiven = sceneParam->count() > 0;
+        args->frameGiven = frame->count() > 0;
         action = [args] { return runCompare(*args); };
     });
 }

@@ -27,6 +27,15 @@ const char* jobKindName(JobKind kind) {
     return "?";
 }
 
+const char* animationName(TemporalSpec::Animation a) {
+    switch (a) {
+        case TemporalSpec::Animation::Play: return "play";
+        case TemporalSpec::Animation::Hold: return "hold";
+        case TemporalSpec::Animation::Step: return "step";
+    }
+    return "?";
+}
+
 const Job* Study::findJob(const std::string& id) const {
     for (const Job& j : jobs)
         if (j.id == id) return &j;
@@ -337,7 +346,7 @@ Expected<void> parseTechnique(const Checker& c, const json& v, const std::string
 
 Expected<void> parseTemporal(const Checker& c, const json& v, Study& study) {
     const std::string ptr = "/temporal";
-    BOUNCE_TRY_VOID(c.keys(v, ptr, {"scenes", "techniques", "frames", "startFrame", "eventFrame", "threshold"}));
+    BOUNCE_TRY_VOID(c.keys(v, ptr, {"scenes", "techniques", "frames", "startFrame", "eventFrame", "animation", "threshold"}));
     TemporalSpec& t = study.temporal;
     t.enabled = true;
     constexpr int kMaxFrames = 10000;
@@ -346,6 +355,18 @@ Expected<void> parseTemporal(const Checker& c, const json& v, Study& study) {
     t.eventFrame = t.startFrame;
     if (v.contains("eventFrame")) {
         BOUNCE_TRY(t.eventFrame, c.integer(v["eventFrame"], ptr + "/eventFrame", t.startFrame, t.startFrame + t.frames - 2));
+    }
+    if (v.contains("animation")) {
+        BOUNCE_TRY(const std::string name, c.string(v["animation"], ptr + "/animation"));
+        if (name == "play") t.animation = TemporalSpec::Animation::Play;
+        else if (name == "hold") t.animation = TemporalSpec::Animation::Hold;
+        else if (name == "step") t.animation = TemporalSpec::Animation::Step;
+        else return c.error(ptr + "/animation", fmt::format("unknown animation '{}' (known: play, hold, step)", name));
+        // Without a frame before the event nothing moves at it: the run would be a still scene.
+        if (t.animation != TemporalSpec::Animation::Play && t.eventFrame == t.startFrame)
+            return c.error(v.contains("eventFrame") ? ptr + "/eventFrame" : ptr + "/animation",
+                           fmt::format("animation '{}' needs an eventFrame after startFrame {} (the move happens at the event)",
+                                       name, t.startFrame));
     }
     if (v.contains("threshold")) { BOUNCE_TRY(t.threshold, c.number(v["threshold"], ptr + "/threshold", 0.0, 1e6)); }
     std::vector<std::string> sceneIds;
@@ -449,12 +470,13 @@ void expand(Study& study) {
                 j.scene = s;
                 j.variant = v;
                 j.scope = var.scope;
+                // One reference per frame of the run, of the moment it shows (held frames share one).
                 for (int f = t.startFrame; f < t.startFrame + t.frames; ++f)
-                    j.inputs.push_back(referenceJob(s, var.scope, static_cast<uint32_t>(f)));
+                    j.inputs.push_back(referenceJob(s, var.scope, t.sceneFrame(f)));
                 j.spec = {{"kind", "temporal"}, {"scene", sceneSpecJson(study.scenes[s])}, {"technique", var.technique},
                           {"settings", var.settings}, {"renderer", study.renderer}, {"size", {study.size.x, study.size.y}},
                           {"frames", t.frames}, {"startFrame", t.startFrame}, {"eventFrame", t.eventFrame},
-                          {"threshold", t.threshold}, {"component", std::string(componentName(var.scope.component))},
+                          {"animation", animationName(t.animation)}, {"threshold", t.threshold}, {"component", std::string(componentName(var.scope.component))},
                           {"references", json::array()}};
                 for (const std::string& ref : j.inputs) j.spec["references"].push_back(references[ref]);
                 stage2.push_back(std::move(j));

@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -68,9 +69,24 @@ struct TemporalSpec {
     std::set<std::string> techniques;  // empty: every technique of the study
     int frames = 8;
     int startFrame = 0;
-    int eventFrame = 0;        // the light or object moved here; the scene holds still afterwards
+    int eventFrame = 0;        // the first frame after the light or object moved
+    // How run frame f shows the scene's animation (docs/studies.md "Temporal"): play: frame f; hold:
+    // frame min(f, eventFrame) (the animation plays and stops at the event); step: startFrame before
+    // the event and eventFrame from it on (a still scene, one jump at the event).
+    enum class Animation { Play, Hold, Step };
+    Animation animation = Animation::Play;
     double threshold = 0.05;   // relative RMS error against the settled image
+
+    uint32_t sceneFrame(int frame) const {
+        switch (animation) {
+            case Animation::Play: break;
+            case Animation::Hold: return static_cast<uint32_t>(std::min(frame, eventFrame));
+            case Animation::Step: return static_cast<uint32_t>(frame < eventFrame ? startFrame : eventFrame);
+        }
+        return static_cast<uint32_t>(frame);
+    }
 };
+const char* animationName(TemporalSpec::Animation a);
 
 struct Study {
     std::filesystem::path file;    // absolute

@@ -7,6 +7,7 @@
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 #include "gpu/Context.h"
+#include "metrics/Convergence.h"
 #include "metrics/ErrorMetrics.h"
 #include "metrics/FlickerMeter.h"
 #include "metrics/Heatmap.h"
@@ -108,6 +109,18 @@ json leakJson(const Expected<double>& score) {
     return {{"error", score.error().message}};
 }
 
+// The pixels where the G-buffer holds a surface (position w = 1, render/gbuffer.frag), top row first
+// like readTexture: elsewhere the position is 0, which a scene file's leak box may contain.
+PixelMask coveredPixels(const gl::Texture& position) {
+    const int w = position.width(), h = position.height();
+    std::vector<glm::vec4> rgba(static_cast<size_t>(w) * h);
+    glGetTextureImage(position.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(glm::vec4)), rgba.data());
+    PixelMask covered(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) covered.set(x, y, rgba[static_cast<size_t>(h - 1 - y) * w + x].w > 0.5f);  // GL rows start at the bottom
+    return covered;
+}
+
 Expected<void> runRender(const Study& study, const Job& job) {
     const fs::path folder = jobFolder(study, job);
     BOUNCE_TRY(auto loaded, load(study, job));
@@ -147,8 +160,9 @@ Expected<void> runRender(const Study& study, const Job& job) {
     if (const auto& regions = loaded->scene.leakRegions) {
         // The masks come from this render's G-buffer positions: the pixels that see each room.
         const Image positions = readTexture(pipeline.gbuffer().position());
-        const PixelMask dark = boxMask(positions, regions->darkMin, regions->darkMax);
-        const PixelMask lit = boxMask(positions, regions->litMin, regions->litMax);
+        const PixelMask covered = coveredPixels(pipeline.gbuffer().position());
+        const PixelMask dark = boxMask(positions, regions->darkMin, regions->darkMax, &covered);
+        const PixelMask lit = boxMask(positions, regions->litMin, regions->litMax, &covered);
         Image masks(positions.width(), positions.height());
         for (int y = 0; y < masks.height(); ++y)
             for (int x = 0; x < masks.width(); ++x) masks.at(x, y) = {dark.inside(x, y) ? 1.0f : 0.0f, lit.inside(x, y) ? 1.0f : 0.0f, 0.0f};
@@ -269,11 +283,15 @@ json pairFlicker(const Image& previous, const Image& current) {
 
 Expected<void> runTemporal(const Study& study, const Job& job) {
     const TemporalSpec& t = study.temporal;
-    std::vector<Image> references;
+    // One reference per frame; frames that show the same moment (a held animation) share one image.
+    std::map<std::string, Image> referenceImages;
+    std::vector<const Image*> references;
     for (const std::string& id : job.inputs) {
-        BOUNCE_TRY_VOID(finishedInput(study, id));
-        BOUNCE_TRY(Image ref, readExr(study.output / id / "image.exr"));
-        references.push_back(std::move(ref));
+        if (!referenceImages.count(id)) {
+            BOUNCE_TRY_VOID(finishedInput(study, id));
+            BOUNCE_TRY(referenceImages[id], readExr(study.output / id / "image.exr"));
+        }
+        references.push_back(&referenceImages[id]);
     }
     BOUNCE_TRY(auto loaded, load(study, job));
     json record = baseRecord(study, job, "ok");
@@ -291,50 +309,47 @@ Expected<void> runTemporal(const Study& study, const Job& job) {
     json frames = json::array();
     FlickerMeter techniqueFlicker, referenceFlicker;
     for (int i = 0; i < t.frames; ++i) {
-        const uint32_t frame = static_cast<uint32_t>(t.startFrame + i);
-        const FrameStats stats = pipeline.renderFrame(frame);
+        const int f = t.startFrame + i;
+        const uint32_t frame = static_cast<uint32_t>(f);
+        const uint32_t sceneFrame = t.sceneFrame(f);
+        // The technique counts run frames (its history, interleaving, reseeding); the scene shows sceneFrame.
+        const FrameStats stats = pipeline.renderFrame(frame, loaded->scene.timeOfFrame(sceneFrame));
         Image image = pipeline.readback(job.scope.component);
         BOUNCE_TRY_VOID(checkFinite(image, fmt::format("{} frame {}", job.id, frame)));
         BOUNCE_TRY_VOID(techniqueFlicker.addFrame(image));
-        BOUNCE_TRY_VOID(referenceFlicker.addFrame(references[static_cast<size_t>(i)]));
-        ErrorMetrics m;
-        CompareOptions options;
+        const Image& ref = *references[static_cast<size_t>(i)];
+        BOUNCE_TRY_VOID(referenceFlicker.addFrame(ref));
         // Per frame only the cheap linear metrics: FLIP on every frame would cost more than the render.
-        const Image& ref = references[static_cast<size_t>(i)];
-        json f = {{"frame", frame}, {"time_s", stats.time}, {"gpu_ms", stats.passes.empty() ? 0.0 : stats.passes.front().milliseconds},
-                  {"cpu_ms", stats.cpuMilliseconds}, {"relRms", relativeRmsError(image, ref)},
-                  {"relMse", relativeSquaredErrorMap(image, ref).mean()}, {"meanLuminance", meanLuminance(image)},
-                  {"referenceMeanLuminance", meanLuminance(ref)}};
-        f["flicker"] = images.empty() ? json(nullptr) : pairFlicker(images.back(), image);
-        f["referenceFlicker"] = i == 0 ? json(nullptr) : pairFlicker(references[static_cast<size_t>(i) - 1], ref);
-        frames.push_back(f);
+        json fr = {{"frame", frame}, {"sceneFrame", sceneFrame}, {"time_s", stats.time},
+                   {"gpu_ms", stats.passes.empty() ? 0.0 : stats.passes.front().milliseconds},
+                   {"cpu_ms", stats.cpuMilliseconds}, {"relRms", relativeRmsError(image, ref)},
+                   {"relMse", relativeSquaredErrorMap(image, ref).mean()}, {"meanLuminance", meanLuminance(image)},
+                   {"referenceMeanLuminance", meanLuminance(ref)}};
+        fr["flicker"] = images.empty() ? json(nullptr) : pairFlicker(images.back(), image);
+        fr["referenceFlicker"] = i == 0 ? json(nullptr) : pairFlicker(*references[static_cast<size_t>(i) - 1], ref);
+        frames.push_back(fr);
         images.push_back(std::move(image));
     }
-    // Convergence latency: the settled image is the technique's last frame (the scene holds still
-    // from eventFrame on); the latency is the first k with error < threshold on every frame from
-    // eventFrame + k on. If the frame before the last is still above the threshold, it did not settle.
-    const Image& settled = images.back();
-    const int event = t.eventFrame - t.startFrame;
-    int latency = -1;
-    for (int i = static_cast<int>(images.size()) - 1; i >= event; --i) {
-        const double e = relativeRmsError(images[static_cast<size_t>(i)], settled);
-        frames[static_cast<size_t>(i)]["errorToSettled"] = std::isfinite(e) ? json(e) : json(nullptr);
-        if (!(e < t.threshold)) break;
-        latency = i - event;
+    // Convergence latency from the event (metrics/Convergence.h): the settled image is the last frame,
+    // the latency the first k after the event from which every frame is within the threshold of it.
+    const size_t event = static_cast<size_t>(t.eventFrame - t.startFrame);
+    const ConvergenceLatency c = convergenceLatency(images, event, t.threshold);
+    for (size_t i = event; i < images.size(); ++i) {
+        const double e = c.errorToSettled[i];
+        frames[i]["errorToSettled"] = std::isfinite(e) ? json(e) : json(nullptr);
     }
-    const bool settledInTime = images.size() >= 2 &&
-                               relativeRmsError(images[images.size() - 2], settled) < t.threshold;
     auto tf = techniqueFlicker.flicker();
     auto rf = referenceFlicker.flicker();
     record["frames"] = frames;
     record["flicker"] = tf ? json(*tf) : json(nullptr);
     record["referenceFlicker"] = rf ? json(*rf) : json(nullptr);
     record["convergence"] = {{"eventFrame", t.eventFrame},
+                             {"animation", animationName(t.animation)},
                              {"threshold", t.threshold},
                              {"metric", "relRms to the last frame"},
-                             {"settled", settledInTime},
-                             {"latencyFrames", settledInTime && latency >= 0 ? json(latency) : json(nullptr)},
-                             {"latencySeconds", settledInTime && latency >= 0 ? json(latency / loaded->scene.frameRate) : json(nullptr)}};
+                             {"settled", c.settled},
+                             {"latencyFrames", c.frames ? json(*c.frames) : json(nullptr)},
+                             {"latencySeconds", c.frames ? json(*c.frames / loaded->scene.frameRate) : json(nullptr)}};
     record["gpu"] = gpuInfoJson((*context())->info());
     return writeRecord(study, job, record);
 }

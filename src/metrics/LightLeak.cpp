@@ -1,5 +1,7 @@
 #include "metrics/LightLeak.h"
 
+#include "core/Check.h"
+
 #include <glm/vector_relational.hpp>
 
 namespace bounce {
@@ -40,12 +42,13 @@ TwoRoomsMasks twoRoomsMasks(const Image& worldPositions, float wallHalfThickness
     return m;
 }
 
-PixelMask boxMask(const Image& worldPositions, const glm::vec3& lo, const glm::vec3& hi) {
+PixelMask boxMask(const Image& worldPositions, const glm::vec3& lo, const glm::vec3& hi, const PixelMask* covered) {
     PixelMask m(worldPositions.width(), worldPositions.height());
+    BOUNCE_CHECK(!covered || (covered->width() == m.width() && covered->height() == m.height()), "coverage mask of another size");
     for (int y = 0; y < worldPositions.height(); ++y)
         for (int x = 0; x < worldPositions.width(); ++x) {
             const auto p = worldPositions.at(x, y);
-            m.set(x, y, glm::all(glm::greaterThan(p, lo)) && glm::all(glm::lessThan(p, hi)));
+            m.set(x, y, (!covered || covered->inside(x, y)) && glm::all(glm::greaterThan(p, lo)) && glm::all(glm::lessThan(p, hi)));
         }
     return m;
 }

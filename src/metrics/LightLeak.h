@@ -21,7 +21,8 @@ struct TwoRoomsMasks {
 TwoRoomsMasks twoRoomsMasks(const Image& worldPositions, float wallHalfThickness);
 
 // Pixels whose world position (RGB of `worldPositions`) lies strictly inside the box lo..hi: a
-// scene's declared leak regions (scene/Scene.h LeakRegions) as masks.
-PixelMask boxMask(const Image& worldPositions, const glm::vec3& lo, const glm::vec3& hi);
+// scene's declared leak regions (scene/Scene.h LeakRegions) as masks. With `covered`, only its
+// pixels count: a G-buffer stores position 0 where no surface is, and a box may contain the origin.
+PixelMask boxMask(const Image& worldPositions, const glm::vec3& lo, const glm::vec3& hi, const PixelMask* covered = nullptr);
 
 }  // namespace bounce

@@ -15,6 +15,7 @@
 #include <glm/gtx/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -49,7 +50,7 @@ public:
         s.source = m_path.string();
         s.name = m_path.stem().string();
         BOUNCE_TRY_VOID(expectObject(root, "", "the scene file"));
-        BOUNCE_TRY_VOID(checkKeys(root, "", "scene", {"name", "frameRate", "settings", "camera", "materials", "objects", "lights"}));
+        BOUNCE_TRY_VOID(checkKeys(root, "", "scene", {"name", "frameRate", "settings", "camera", "materials", "objects", "lights", "leakRegions"}));
         if (root.contains("name")) {
             BOUNCE_TRY(s.name, text(root["name"], "/name"));
         }
@@ -61,6 +62,7 @@ public:
         if (!root.contains("objects")) return err("", "no \"objects\": a scene needs at least one object");
         BOUNCE_TRY_VOID(objects(root["objects"], "/objects"));
         if (root.contains("lights")) BOUNCE_TRY_VOID(lights(root["lights"], "/lights"));
+        if (root.contains("leakRegions")) BOUNCE_TRY_VOID(leakRegions(root["leakRegions"], "/leakRegions"));
         if (root.contains("camera")) {
             BOUNCE_TRY_VOID(camera(root["camera"], "/camera"));
         } else if (!m_cameraFromModel) {
@@ -561,6 +563,40 @@ private:
             BOUNCE_TRY(t.squareStart, vec2(j["start"], p + "/start", 0.0f, 1.0f));
         }
         return t;
+    }
+
+    // One open box {"min": [x, y, z], "max": [x, y, z]} (metres) of "leakRegions".
+    Expected<void> leakBox(const json& j, const std::string& p, const char* room, glm::vec3& lo, glm::vec3& hi) const {
+        const std::string what = fmt::format("leak region '{}'", room);
+        BOUNCE_TRY_VOID(expectObject(j, p, what + " ({\"min\": [x, y, z], \"max\": [x, y, z]})"));
+        BOUNCE_TRY_VOID(checkKeys(j, p, what, {"min", "max"}));
+        if (!j.contains("min") || !j.contains("max")) return err(p, "{}: needs \"min\" and \"max\" (corners, metres)", what);
+        BOUNCE_TRY(lo, vec3(j["min"], p + "/min"));
+        BOUNCE_TRY(hi, vec3(j["max"], p + "/max"));
+        // The box is open (metrics/LightLeak.h boxMask: strictly inside), so min = max on an axis holds no point.
+        for (int a = 0; a < 3; ++a)
+            if (!(lo[a] < hi[a]))
+                return valueErr(p + "/max", "{}: max {} is not above min {} on {} (an empty box)", what, hi[a], lo[a], "xyz"[a]);
+        return {};
+    }
+
+    // "leakRegions": {"dark": box, "lit": box}: where no light must arrive and what normalises the
+    // score (scene/Scene.h LeakRegions), for `bounce sweep` and `bounce compare --leak-scene`.
+    Expected<void> leakRegions(const json& j, const std::string& p) {
+        BOUNCE_TRY_VOID(expectObject(j, p, "leakRegions ({\"dark\": box, \"lit\": box})"));
+        BOUNCE_TRY_VOID(checkKeys(j, p, "leakRegions", {"dark", "lit"}));
+        if (!j.contains("dark") || !j.contains("lit"))
+            return err(p, "leakRegions needs \"dark\" (where no light arrives) and \"lit\" (the lit reference region)");
+        LeakRegions r;
+        BOUNCE_TRY_VOID(leakBox(j["dark"], p + "/dark", "dark", r.darkMin, r.darkMax));
+        BOUNCE_TRY_VOID(leakBox(j["lit"], p + "/lit", "lit", r.litMin, r.litMax));
+        // Open boxes share a point exactly when their ranges overlap with positive length on every axis;
+        // a pixel in both would count as leak and as the light that normalises it.
+        bool overlap = true;
+        for (int a = 0; a < 3; ++a) overlap = overlap && std::max(r.darkMin[a], r.litMin[a]) < std::min(r.darkMax[a], r.litMax[a]);
+        if (overlap) return err(p + "/lit", "leakRegions: the dark and the lit boxes overlap (a surface point would be in both)");
+        m_scene.leakRegions = r;
+        return {};
     }
 
     Expected<void> camera(const json& j, const std::string& p) {

@@ -101,10 +101,14 @@ Expected<std::unique_ptr<Pipeline>> Pipeline::create(const Scene& scene, std::un
 }
 
 FrameStats Pipeline::renderFrame(uint32_t frame, const Camera* cameraOverride) {
+    return renderFrame(frame, m_scene.timeOfFrame(frame), cameraOverride);
+}
+
+FrameStats Pipeline::renderFrame(uint32_t frame, float time, const Camera* cameraOverride) {
     const auto start = std::chrono::steady_clock::now();
     FrameStats stats;
     stats.frame = frame;
-    stats.time = m_scene.timeOfFrame(frame);
+    stats.time = time;
     std::optional<gl::FramePath> framePath(std::in_place);  // the frame's submission: no waiting reads
     m_timers.beginFrame();
     m_sceneGpu.update(stats.time);

@@ -32,6 +32,10 @@ public:
 
     // Renders frame `frame`; the camera is the scene's (animated) camera unless overridden.
     FrameStats renderFrame(uint32_t frame, const Camera* cameraOverride = nullptr);
+    // The same with the scene's animation at `time` seconds instead of frame / frameRate: frame
+    // `frame` of the run showing another moment, e.g. a study's animation held after an event while
+    // an incremental technique keeps converging (docs/studies.md "Temporal").
+    FrameStats renderFrame(uint32_t frame, float time, const Camera* cameraOverride = nullptr);
 
     const gl::Texture& output(Component c) const;
     // The shared views (outputs, G-buffer channels) followed by the technique's (Technique::debugViews).

@@ -54,6 +54,17 @@ expect_study_failure(temporal_unknown_technique "temporal.techniques[0]: 'iir' i
   "{${scenes}, \"techniques\": [\"direct\"], \"temporal\": {\"techniques\": [\"iir\"]}}")
 expect_study_failure(temporal_one_frame "temporal.frames: 1 is not an integer in [2"
   "{${scenes}, \"techniques\": [\"direct\"], \"temporal\": {\"frames\": 1}}")
+expect_study_failure(temporal_unknown_animation "temporal.animation: unknown animation 'pause' (known: play, hold, step)"
+  "{${scenes}, \"techniques\": [\"direct\"], \"temporal\": {\"frames\": 4, \"eventFrame\": 2, \"animation\": \"pause\"}}")
+expect_study_failure(temporal_step_without_event "temporal.animation: animation 'step' needs an eventFrame after startFrame 0"
+  "{${scenes}, \"techniques\": [\"direct\"], \"temporal\": {\"frames\": 4, \"animation\": \"step\"}}")
+expect_study_failure(temporal_event_after_run "temporal.eventFrame: 3 is not an integer in [0, 2]"
+  "{${scenes}, \"techniques\": [\"direct\"], \"temporal\": {\"frames\": 4, \"eventFrame\": 3, \"animation\": \"hold\"}}")
+# A scene file whose leak regions are wrong is refused while the study is read, naming both files.
+file(WRITE ${WORK}/floor.obj "v -2 0 -1\nv 2 0 -1\nv 2 0 1\nv -2 0 1\nf 1 4 3\nf 1 3 2\n")
+file(WRITE ${WORK}/leaky.json "{\"objects\": [{\"model\": \"floor.obj\"}],\n \"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"intensity\": 1}],\n \"camera\": {\"position\": [0, 4, 0.1], \"target\": [0, 0, 0]},\n \"leakRegions\": {\"dark\": {\"min\": [0, -1, -1], \"max\": [2, 1, 1]},\n   \"lit\": {\"min\": [-2, -1, -1], \"max\": [0.5, 1, 1]}}}\n")
+expect_study_failure(scene_file_leak_overlap "scene_file_leak_overlap.json:1: scenes[0]: ${WORK}/leaky.json:5: leakRegions: the dark and the lit boxes overlap"
+  "{\"scenes\": [{\"file\": \"leaky.json\"}], \"techniques\": [\"direct\"]}")
 expect_study_failure(wildcard_technique_setting "techniques[0]: technique 'direct': unknown setting 'radiance'"
   "{${scenes}, \"techniques\": [{\"name\": \"*\", \"grid\": {\"radiance\": [1]}}]}")
 expect_study_failure(malformed "malformed.json:2:" "{${scenes},\n \"techniques\": [\"direct\",]}")

@@ -5,10 +5,16 @@
 # script `bounce sweep --emit slurm` writes. Torn down on exit. Exit 77 (skipped) only when
 # slurm-wlm cannot start here, and never when CI=true.
 #
-# usage: slurm_test.sh BOUNCE WORK
+# With a third argument, a study file, the same Slurm then runs that whole study too (not under
+# ctest: docs/studies.md's demo study through Slurm is `tests/study/slurm_test.sh build/src/app/bounce
+# /tmp/slurm scripts/demo-study.json`), and its records are checked against a local run: the same jobs
+# and statuses; the jobs whose metrics differ are listed.
+#
+# usage: slurm_test.sh BOUNCE WORK [STUDY]
 set -u
 BOUNCE=$1
 WORK=$2
+STUDY=${3:-}
 
 skip() {
   if [ "${CI:-}" = "true" ]; then echo "FAIL: $* (CI=true: the Slurm test must run)"; exit 1; fi
@@ -133,5 +139,39 @@ def load(root):
 a, b = load(f"{w}/out"), load(f"{w}/local")
 assert a["spec"] == b["spec"] and a["metrics"] == b["metrics"], (a["metrics"], b["metrics"])
 print("ok: Slurm and local compare records agree")
+EOF
+[ -n "$STUDY" ] || exit 0
+
+# The given study, all of it, through the same Slurm, then locally.
+"$BOUNCE" sweep "$STUDY" --out "$WORK"/study-slurm --emit slurm || fail "--emit slurm $STUDY"
+start=$(date +%s)
+ids=$("$WORK"/study-slurm/jobs/submit-slurm.sh) || fail "submit-slurm.sh: $ids"
+echo "ok: submitted $STUDY as $(echo $ids)"
+for _ in $(seq 7200); do  # up to an hour
+  [ -z "$(squeue -h -o %i 2>/dev/null)" ] && break
+  sleep 0.5
+done
+[ -z "$(squeue -h -o %i)" ] || fail "$STUDY: jobs still queued after an hour"
+echo "ok: $STUDY ran under Slurm in $(( $(date +%s) - start )) s"
+"$BOUNCE" sweep "$STUDY" --out "$WORK"/study-local --jobs 2 > /dev/null || fail "local run of $STUDY"
+/usr/bin/python3 - "$WORK" <<'EOF' || fail "Slurm and local records of the study differ"
+import json, os, sys
+from collections import Counter
+w = sys.argv[1]
+def records(root):
+    out = {}
+    for folder, _dirs, files in os.walk(root):
+        if "record.json" in files:
+            with open(os.path.join(folder, "record.json")) as f:
+                r = json.load(f)
+            out[r["job"]] = r
+    return out
+a, b = records(f"{w}/study-slurm"), records(f"{w}/study-local")
+assert sorted(a) == sorted(b), f"jobs differ: {sorted(set(a) ^ set(b))[:5]}"
+assert {j: r["status"] for j, r in a.items()} == {j: r["status"] for j, r in b.items()}, "statuses differ"
+keys = ("metrics", "leak", "flicker", "convergence")
+differ = [j for j in a if any(a[j].get(k) != b[j].get(k) for k in keys)]
+print(f"ok: {len(a)} records, statuses {dict(Counter(r['status'] for r in a.values()))} as in the local run; "
+      f"metrics differ in {len(differ)}: {differ}")
 EOF
 exit 0

@@ -11,6 +11,7 @@
 #include "metrics/FlickerMeter.h"
 #include "metrics/Flip.h"
 #include "metrics/Heatmap.h"
+#include "metrics/Convergence.h"
 #include "metrics/LightLeak.h"
 #include "metrics/Ssim.h"
 
@@ -608,6 +609,74 @@ TEST(LightLeak, TwoRoomsMasksSplitAtTheWall) {
     EXPECT_EQ(m.dark.count(), 1u);
     EXPECT_TRUE(m.lit.inside(0, 0));
     EXPECT_TRUE(m.dark.inside(3, 0));
+}
+
+TEST(LightLeak, BoxMaskIsOpenAndKeepsOnlyCoveredPixels) {
+    // Inside, on the face (open box: outside), outside, and the origin twice: a surface there and
+    // an uncovered pixel whose G-buffer position is 0 as well.
+    Image positions(5, 1);
+    positions.at(0, 0) = {0.5f, 0.5f, 0.5f};
+    positions.at(1, 0) = {1.0f, 0.5f, 0.5f};
+    positions.at(2, 0) = {2.0f, 0.5f, 0.5f};
+    PixelMask covered(5, 1, true);
+    covered.set(4, 0, false);
+    const glm::vec3 lo(-1.0f), hi(1.0f);
+    const PixelMask all = boxMask(positions, lo, hi);
+    EXPECT_EQ(all.count(), 3u);  // without coverage the uncovered origin counts: why `covered` exists
+    const PixelMask seen = boxMask(positions, lo, hi, &covered);
+    EXPECT_EQ(seen.count(), 2u);
+    EXPECT_TRUE(seen.inside(0, 0) && seen.inside(3, 0));
+    EXPECT_FALSE(seen.inside(1, 0) || seen.inside(2, 0) || seen.inside(4, 0));
+}
+
+namespace {
+// A flat 2x2 frame: relativeRmsError between flat frames a and b is |a - b| / b.
+Image flat(float v) { return Image(2, 2, glm::vec3(v)); }
+}  // namespace
+
+TEST(Convergence, LatencyCountsFromTheEventNotFromTheStart) {
+    // Converged on the old scene (1.0) for three frames, the event at frame 3, then a technique that
+    // needs three frames to reach the new scene's image 2.0: errors to S = 2.0 are 0.5 0.5 0.5 | 0.25 0.1 0.02 0 0.
+    const std::vector<Image> frames{flat(1.0f), flat(1.0f), flat(1.0f), flat(1.5f), flat(1.8f), flat(1.96f), flat(2.0f), flat(2.0f)};
+    const double threshold = 0.05;  // between 0.02 and 0.1: the third frame after the event is the first within
+    const ConvergenceLatency c = convergenceLatency(frames, 3, threshold);
+    ASSERT_TRUE(c.settled);
+    ASSERT_TRUE(c.frames.has_value());
+    EXPECT_EQ(*c.frames, 2);  // frames 5, 6, 7 are within: k = 5 - 3
+    EXPECT_TRUE(std::isnan(c.errorToSettled[2]));  // before the event: not measured
+    EXPECT_NEAR(c.errorToSettled[3], 0.25, 1e-6);
+    // Measured from the start instead, the same run would report 5: the frames before the event differ from S.
+    EXPECT_EQ(*convergenceLatency(frames, 0, threshold).frames, 5);
+}
+
+TEST(Convergence, AFrozenTechniqueDiffersFromOneThatReacts) {
+    // Frozen after frame 0: the image never changes, so it is "settled at once" against its own last
+    // frame (latency 0); a technique that reacts to the event at frame 2 over two frames reports 2.
+    // (Whether the frozen image is right is the per-frame error against the reference, not latency.)
+    const std::vector<Image> frozen(6, flat(1.0f));
+    const std::vector<Image> reacting{flat(1.0f), flat(1.0f), flat(1.4f), flat(1.8f), flat(2.0f), flat(2.0f)};
+    const ConvergenceLatency a = convergenceLatency(frozen, 2, 0.05);
+    const ConvergenceLatency b = convergenceLatency(reacting, 2, 0.05);
+    ASSERT_TRUE(a.frames && b.frames);
+    EXPECT_EQ(*a.frames, 0);
+    EXPECT_EQ(*b.frames, 2);
+}
+
+TEST(Convergence, NotSettledOrLeavingTheThresholdAgain) {
+    // Still moving at the end: the frame before the last is 10 % off, so S is not a settled image.
+    const std::vector<Image> moving{flat(1.0f), flat(1.1f), flat(1.2f), flat(1.3f), flat(1.43f)};
+    const ConvergenceLatency m = convergenceLatency(moving, 0, 0.05);
+    EXPECT_FALSE(m.settled);
+    EXPECT_FALSE(m.frames.has_value());
+    // Within, out again (a late pop), within: the latency starts after the last excursion.
+    const std::vector<Image> pop{flat(1.0f), flat(2.0f), flat(2.5f), flat(2.0f), flat(2.0f)};
+    const ConvergenceLatency p = convergenceLatency(pop, 0, 0.05);
+    ASSERT_TRUE(p.frames.has_value());
+    EXPECT_EQ(*p.frames, 3);
+    // A black settled image and a frame that is not black: infinite error, never within.
+    const std::vector<Image> dark{flat(1.0f), flat(0.0f), flat(0.0f)};
+    EXPECT_EQ(*convergenceLatency(dark, 0, 0.05).frames, 1);
+    EXPECT_TRUE(std::isinf(convergenceLatency(dark, 0, 0.05).errorToSettled[0]));
 }
 
 TEST(RmsSum8, SumsTheChannelsRmsOn8BitValues) {

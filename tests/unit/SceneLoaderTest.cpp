@@ -784,6 +784,55 @@ TEST(JsonScene, MissingFilesAndReferences) {
     EXPECT_TRUE(contains(log.text(), "none.png")) << log.text();
 }
 
+TEST(JsonScene, LeakRegions) {
+    writeFile("leak/models/cube.obj", kCubeObj);
+    const std::string head = "{\n  \"objects\": [{\"model\": \"models/cube.obj\"}],\n"
+                             "  \"camera\": {\"position\": [0, 0, 5], \"target\": [0, 0, 0]},\n  \"leakRegions\": ";
+    const auto load = [&](const std::string& name, const std::string& regions) {
+        return loadScene(writeFile("leak/" + name, head + regions + "\n}\n").string());
+    };
+    Expected<Scene> none = load("none.json", "{\"dark\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n"
+                                             "   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0, 1, 1]}}");
+    ASSERT_TRUE(none.ok()) << none.error().message;
+    ASSERT_TRUE(none->leakRegions.has_value());
+    EXPECT_EQ(none->leakRegions->darkMin, glm::vec3(0.0f));
+    EXPECT_EQ(none->leakRegions->darkMax, glm::vec3(1.0f));
+    EXPECT_EQ(none->leakRegions->litMin, glm::vec3(-1.0f));
+    EXPECT_EQ(none->leakRegions->litMax, glm::vec3(0.0f, 1.0f, 1.0f));  // touching at x = 0: open boxes share no point
+    Expected<Scene> without = loadScene(writeFile("leak/without.json", head + "null\n}\n").string());
+    ASSERT_FALSE(without.ok());  // null is not an object
+    EXPECT_TRUE(contains(without.error().message, "without.json:4:")) << without.error().message;
+
+    struct Bad {
+        const char* name;
+        std::string regions;
+        std::vector<std::string> says;  // the message names the file and line, the key and the problem
+    };
+    const std::vector<Bad> bad = {
+        {"missing-lit.json", "{\"dark\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]}}", {"missing-lit.json:4:", "\"lit\""}},
+        {"unknown.json", "{\"dark\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0, 1, 1]},\n   \"grey\": {}}",
+         {"unknown.json:6:", "\"grey\"", "dark, lit"}},
+        {"box-key.json", "{\"dark\": {\"min\": [0, 0, 0], \"maximum\": [1, 1, 1]},\n   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0, 1, 1]}}",
+         {"box-key.json:4:", "\"maximum\"", "leak region 'dark'", "max, min"}},
+        {"empty.json", "{\"dark\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n   \"lit\": {\"min\": [-1, -1, -1],\n           \"max\": [0, 1, -1]}}",
+         {"empty.json:6:", "leakRegions/lit/max", "not above min -1 on z"}},
+        {"short.json", "{\"dark\": {\"min\": [0, 0], \"max\": [1, 1, 1]},\n   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0, 1, 1]}}",
+         {"short.json:4:", "leakRegions/dark/min", "3 numbers"}},
+        {"text.json", "{\"dark\": {\"min\": [0, 0, \"0\"], \"max\": [1, 1, 1]},\n   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0, 1, 1]}}",
+         {"text.json:4:", "leakRegions/dark/min/2", "the string \"0\""}},
+        {"infinite.json", "{\"dark\": {\"min\": [0, 0, 0], \"max\": [1, 1e999, 1]},\n   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0, 1, 1]}}",
+         {"infinite.json:4:", "not finite"}},  // the JSON parser refuses the overflow at its line
+        {"overlap.json", "{\"dark\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n   \"lit\": {\"min\": [-1, -1, -1], \"max\": [0.5, 1, 1]}}",
+         {"overlap.json:5:", "overlap"}},
+    };
+    for (const Bad& b : bad) {
+        Expected<Scene> scene = load(b.name, b.regions);
+        ASSERT_FALSE(scene.ok()) << b.name;
+        for (const std::string& part : b.says) EXPECT_TRUE(contains(scene.error().message, part)) << b.name << ": " << scene.error().message;
+        EXPECT_EQ(scene.error().message.find('\n'), std::string::npos) << b.name;
+    }
+}
+
 TEST(JsonScene, AreaLightTexturesAndTwoSided) {
     writeFile("arealight/models/cube.obj", kCubeObj);
     // A PNG is decoded from sRGB: full red and green stay 1 and 0 exactly, 8-bit 128 is 0.2158 (sRGB EOTF).
