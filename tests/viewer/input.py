@@ -76,12 +76,18 @@ xdo("mousemove", "--window", window, str(PANEL + 160), str(y))
 pause()
 xdo("mouseup", "1")
 pause()
+# One notch of the wheel up (X button 4) zooms in: distance x 0.9.
+xdo("click", "4")
+pause()
 signal("go-orbit")
 s1 = wait_for("in-orbit.json")
 dyaw = s1["orbit"]["yaw"] - s0["orbit"]["yaw"]
 # The cursor moves in whole pixels and the factor is exact: 1e-5 rad is float rounding of the angle.
 expect("left drag orbits", abs(dyaw + 0.5) < 1e-5 and abs(s1["orbit"]["pitch"] - s0["orbit"]["pitch"]) < 1e-6,
        f"yaw changed by {dyaw:.6f} rad (expected -0.5), pitch by {s1['orbit']['pitch'] - s0['orbit']['pitch']:.2e}")
+ratio = s1["orbit"]["distance"] / s0["orbit"]["distance"]
+# 1e-6: one float multiplication.
+expect("wheel zooms", abs(ratio - 0.9) < 1e-6, f"distance x {ratio:.7f} (expected 0.9)")
 expect("left drag leaves the light", s1["lights"][0] == s0["lights"][0], f"light {s0['lights'][0]} -> {s1['lights'][0]}")
 
 # Ctrl + left drag 50 pixels down: the selected light moves down the camera's up vector by
