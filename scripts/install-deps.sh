@@ -12,6 +12,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
+  # the viewer's input test drives real mouse and key events into Xvfb (tests/viewer/input.sh)
+  xdotool
   # studies: `bounce sweep --emit parallel|slurm` (tested against a local single-node Slurm),
   # `bounce report` (matplotlib plots) and its test in headless Chromium
   parallel munge slurmctld slurmd slurm-client

@@ -6,7 +6,9 @@
 //   background path-traced reference of the current view (app/viewer/BackgroundReference.h); shown
 //   side by side or as a wipe, same camera and scene time, with relMSE and FLIP of A against B
 //   (recomputed every viewer.metricsInterval frames on the CPU) and an optional FLIP heat map.
-// - Debug views: the Pipeline's and the technique's (Technique::debugViews), one list.
+//   A background reference restarts whenever the view it was started for changes.
+// - Debug views: the Pipeline's and the technique's (Technique::debugViews), one list; discrete keys
+//   act on GLFW key events (a tap shorter than a frame still counts).
 // - Animation: play / pause / step / scrub / speed; the selected light or animated object moves with
 //   the arrow keys and PageUp/PageDown, or ctrl + left drag in the view.
 // - Camera: orbit (left drag rotates about the target, right drag pans, wheel zooms) or fly (Tab
@@ -321,12 +323,30 @@ int runView(const ViewOptions& o) {
     if (!context.ok()) return failCommand(cmd, context.error().message);
     GLFWwindow* window = (*context)->window();
 
-    auto display = gl::Program::build({"display", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                    {GL_FRAGMENT_SHADER, "app/display.frag"}}});
+    // app/display.frag for float textures, unsigned-integer arrays (ID views) and multisampled arrays.
+    auto buildDisplay = [](const char* name, std::vector<std::pair<std::string, std::string>> defines) {
+        return gl::Program::build({name, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "app/display.frag"}},
+                                   std::move(defines)});
+    };
+    auto display = buildDisplay("display", {});
     if (!display.ok()) return failCommand(cmd, display.error().message);
-    auto points = gl::Program::build({"points", {{GL_VERTEX_SHADER, "app/points.vert"}, {GL_FRAGMENT_SHADER, "app/points.frag"}}});
-    if (!points.ok()) return failCommand(cmd, points.error().message);
+    auto displayIds = buildDisplay("display.ids", {{"DISPLAY_IDS", "1"}});
+    if (!displayIds.ok()) return failCommand(cmd, displayIds.error().message);
+    auto displayMs = buildDisplay("display.multisample", {{"DISPLAY_MS", "1"}});
+    if (!displayMs.ok()) return failCommand(cmd, displayMs.error().message);
+    auto pointsProgram = gl::Program::build({"points", {{GL_VERTEX_SHADER, "app/points.vert"}, {GL_FRAGMENT_SHADER, "app/points.frag"}}});
+    if (!pointsProgram.ok()) return failCommand(cmd, pointsProgram.error().message);
 
+    // Discrete keys (Tab, space, `,` `.`, F12, b) are taken from GLFW's key events, not from the key
+    // state once a frame: a tap shorter than a frame (llvmpipe frames take up to the frame budget, and
+    // xdotool's taps take microseconds) is pressed and released within one glfwPollEvents, so the
+    // state would never read "down". This ImGui (1.86) has no input queue either. ImGui's GLFW backend,
+    // installed after this, calls this callback before its own.
+    static std::vector<int> keyPresses;
+    keyPresses.clear();
+    glfwSetKeyCallback(window, [](GLFWwindow*, int key, int, int action, int) {
+        if (action == GLFW_PRESS) keyPresses.push_back(key);
+    });
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
@@ -375,16 +395,15 @@ int runView(const ViewOptions& o) {
     size_t scriptPos = 0;
     int scriptWait = 0;
     bool waitReference = false, quit = false;
+    std::string waitFile;  // wait-file: until it exists or waitFileDeadline (glfwGetTime) passes
+    double waitFileDeadline = 0.0;
     std::string fatal;  // a script action failed: the viewer ends with this message
+    glm::vec4 graphRect{0.0f};  // the frame-time graph as last drawn: x, y, width, height (for `state`)
+    size_t graphBars = 0;
     Rect viewArea, lastRectA, lastRectB;
 
-    // This ImGui (Debian 12's) has no key enums for these keys: GLFW's state with edge detection.
-    std::map<int, bool> keysDown;
-    auto keyPressed = [&](int key) {
-        const bool down = glfwGetKey(window, key) == GLFW_PRESS;
-        const bool was = std::exchange(keysDown[key], down);
-        return down && !was;
-    };
+    // This frame's presses of `key` (from the key callback above).
+    auto pressCount = [&](int key) { return static_cast<int>(std::count(keyPresses.begin(), keyPresses.end(), key)); };
     auto moveSelected = [&](glm::vec3 delta) {
         if (selectObject) {
             if (selectedObject >= 0) {
@@ -473,10 +492,32 @@ int runView(const ViewOptions& o) {
         if (!side.pipeline) return makeError("side {} has no image ({})", side.label, side.error);
         return writeImage(file, side.pipeline->readback(static_cast<Component>(component)), tm);
     };
+    // The view a background reference was started for: camera, frame, lights, animated objects' moves and
+    // size, as numbers compared exactly (any change, however small, is another view).
+    bool referenceActive = false;  // side B is a reference that follows the view
+    int referenceSpp = 0, referenceRestarts = 0;
+    std::vector<float> referenceView;
+    auto referenceSize = [&] { return a.pipeline ? a.pipeline->size() : glm::ivec2(256); };
+    auto currentView = [&] {
+        const CameraPose pose = CameraPose::of(camera);
+        std::vector<float> k{pose.position.x, pose.position.y, pose.position.z, pose.target.x, pose.target.y, pose.target.z,
+                             pose.up.x, pose.up.y, pose.up.z, pose.verticalFov, static_cast<float>(currentFrame()),
+                             static_cast<float>(referenceSize().x), static_cast<float>(referenceSize().y)};
+        for (const Light& l : scene->lights) k.insert(k.end(), {l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z});
+        for (int i : movableObjects) {
+            const glm::mat4& m = scene->objects[static_cast<size_t>(i)].transform;
+            for (int c = 0; c < 4; ++c) k.insert(k.end(), {m[c].x, m[c].y, m[c].z, m[c].w});
+        }
+        return k;
+    };
     auto startReference = [&](int spp) {
         controller.apply(camera);
+        if (followPath && !path.keys.empty()) camera = path.evaluate(scene->timeOfFrame(currentFrame())).applyTo(camera);
+        referenceActive = true;
+        referenceSpp = spp;
+        referenceView = currentView();
         PathTracerSettings s;
-        const glm::ivec2 rs = a.pipeline ? a.pipeline->size() : glm::ivec2(256);
+        const glm::ivec2 rs = referenceSize();
         s.width = rs.x;
         s.height = rs.y;
         s.samplesPerPixel = static_cast<uint32_t>(std::max(1, spp));
@@ -487,6 +528,7 @@ int runView(const ViewOptions& o) {
         background.start(*scene, camera, s);
         bSource = BSource::Image;
         bImage = Image();
+        bImageTexture = {};  // nothing shown until the first sample of this view
         bImageName = fmt::format("path-traced reference, frame {}", s.frame);
         if (abMode == AbMode::Off) abMode = AbMode::Split;
     };
@@ -526,7 +568,11 @@ int runView(const ViewOptions& o) {
             side.view.clear();
             side.settingView.clear();
             side.rebuild = true;
-            if (&side == &b) bSource = BSource::Technique;
+            if (&side == &b) {
+                bSource = BSource::Technique;
+                background.stop();
+                referenceActive = false;
+            }
         } else if (v == "set" || v == "b-set") {
             Side& side = v == "set" ? a : b;
             BOUNCE_TRY(auto kv, parseAssignment(arg));
@@ -537,6 +583,8 @@ int runView(const ViewOptions& o) {
             side.rebuild = true;
         } else if (v == "b-reference") {
             BOUNCE_TRY(bImage, readImage(arg));
+            background.stop();
+            referenceActive = false;
             bImageName = arg;
             bSource = BSource::Image;
             uploadImage(bImageTexture, "viewer.bImage", bImage);
@@ -607,6 +655,11 @@ int runView(const ViewOptions& o) {
             scriptWait = std::max(0, static_cast<int>(act.number(0)));
         } else if (v == "wait-reference") {
             waitReference = true;
+        } else if (v == "wait-file") {
+            waitFile = arg;
+            waitFileDeadline = glfwGetTime() + (act.args.size() > 1 ? act.number(1) : 60.0);
+        } else if (v == "layer") {
+            layer = std::max(0, static_cast<int>(act.number(0)));
         } else if (v == "save-path") {
             BOUNCE_TRY_VOID(savePath(arg));
         } else if (v == "save-bookmarks") {
@@ -634,8 +687,16 @@ int runView(const ViewOptions& o) {
                                 {"speed", speed}, {"renderSize", {rs.x, rs.y}}, {"scale", scale},
                                 {"ab", kAbModeNames[static_cast<int>(abMode)]}, {"a", a.technique}, {"b", b.technique},
                                 {"view", a.view.empty() ? "image" : a.view}, {"pathKeys", path.keys.size()},
-                                {"bookmarks", bookmarks.size()},
-                                {"camera", {camera.position.x, camera.position.y, camera.position.z}}};
+                                {"bookmarks", bookmarks.size()}, {"layer", layer},
+                                {"camera", {camera.position.x, camera.position.y, camera.position.z}},
+                                {"orbit", {{"yaw", controller.yaw}, {"pitch", controller.pitch}, {"distance", controller.distance},
+                                           {"fly", controller.fly}}}};
+            for (const Light& l : scene->lights) j["lights"].push_back({l.position.x, l.position.y, l.position.z});
+            const auto progress = background.progress();
+            j["reference"] = {{"active", referenceActive}, {"restarts", referenceRestarts}, {"running", progress.running},
+                              {"samples", progress.samplesDone}};
+            // The frame-time graph as last drawn (window pixels, origin top left) and its bars.
+            j["graph"] = {{"rect", {graphRect.x, graphRect.y, graphRect.z, graphRect.w}}, {"frames", graphBars}};
             BOUNCE_TRY_VOID(writeTextFileAtomic(arg, j.dump(2) + "\n"));
         } else if (v == "quit") {
             quit = true;
@@ -645,7 +706,7 @@ int runView(const ViewOptions& o) {
     // Runs script actions until one needs a frame: a wait, or an output action when `output` is false
     // (outputs run after the frame is drawn, in the second call).
     auto runScript = [&](bool output) {
-        while (fatal.empty() && !quit && scriptPos < script.size() && scriptWait == 0 && !waitReference) {
+        while (fatal.empty() && !quit && scriptPos < script.size() && scriptWait == 0 && !waitReference && waitFile.empty()) {
             const ScriptAction& act = script[scriptPos];
             if (findScriptAction(act.verb)->output != output) return;  // its turn is before / after a frame
             ++scriptPos;
@@ -657,6 +718,7 @@ int runView(const ViewOptions& o) {
     int displayed = 0;
     while (!glfwWindowShouldClose(window) && !quit && fatal.empty()) {
         if (o.quitAfter > 0 && displayed >= o.quitAfter) break;
+        keyPresses.clear();  // this frame's presses only
         glfwPollEvents();
         const double now = glfwGetTime();
         const float dt = static_cast<float>(now - lastTime);
@@ -666,6 +728,10 @@ int runView(const ViewOptions& o) {
         if (fbw <= 0 || fbh <= 0) continue;  // minimised
         if (scriptWait > 0) --scriptWait;
         if (waitReference && !background.progress().running) waitReference = false;
+        if (!waitFile.empty()) {
+            if (std::filesystem::exists(waitFile)) waitFile.clear();
+            else if (now > waitFileDeadline) fatal = fmt::format("{}: wait-file: {} did not appear in time", o.script, waitFile);
+        }
         runScript(false);
         if (quit || !fatal.empty()) break;
 
@@ -711,22 +777,25 @@ int runView(const ViewOptions& o) {
         }
         bool screenshotKey = false;
         if (!io.WantCaptureKeyboard) {
-            if (ImGui::IsKeyPressed(ImGuiKey_Tab)) {
+            for (int i = pressCount(GLFW_KEY_TAB); i > 0; --i) {
                 if (!controller.fly) controller.position = controller.target - controller.forward() * controller.distance;
                 else controller.target = controller.position + controller.forward() * controller.distance;
                 controller.fly = !controller.fly;
             }
-            if (ImGui::IsKeyPressed(ImGuiKey_Space)) playing = !playing;
-            if (keyPressed(GLFW_KEY_PERIOD)) {
-                frameF = std::floor(frameF) + 1.0;
+            if (pressCount(GLFW_KEY_SPACE) % 2 == 1) playing = !playing;
+            if (const int n = pressCount(GLFW_KEY_PERIOD); n > 0) {
+                frameF = std::floor(frameF) + n;
                 playing = false;
             }
-            if (keyPressed(GLFW_KEY_COMMA)) {
-                frameF = std::max(0.0, std::floor(frameF) - 1.0);
+            if (const int n = pressCount(GLFW_KEY_COMMA); n > 0) {
+                frameF = std::max(0.0, std::floor(frameF) - n);
                 playing = false;
             }
-            if (keyPressed(GLFW_KEY_F12)) screenshotKey = true;
-            if (keyPressed(GLFW_KEY_B)) abMode = static_cast<AbMode>((static_cast<int>(abMode) + 1) % 3);
+            if (pressCount(GLFW_KEY_F12) > 0) screenshotKey = true;
+            if (const int n = pressCount(GLFW_KEY_B); n > 0) {
+                abMode = static_cast<AbMode>((static_cast<int>(abMode) + n) % 3);
+                forceMetrics = true;
+            }
             const float step = 0.25f * sceneScale * dt;  // a quarter of the scene per second
             if (controller.fly) {
                 const glm::vec3 f = controller.forward();
@@ -783,6 +852,13 @@ int runView(const ViewOptions& o) {
             side->rebuild = false;
             forceMetrics = true;
         }
+        // A background reference is of the view it was started for: when the camera (or the frame, a
+        // light, an object, the size) changes, it restarts for the new view, and side B and the
+        // metrics follow it from its first sample (the old one no longer matches side A).
+        if (referenceActive && bSource == BSource::Image && currentView() != referenceView) {
+            startReference(referenceSpp);
+            ++referenceRestarts;
+        }
         if (a.pipeline) a.stats = a.pipeline->renderFrame(frame, &camera);
         if (showsB() && bSource == BSource::Technique && b.pipeline) b.stats = b.pipeline->renderFrame(frame, &camera);
         if (playing) {
@@ -827,25 +903,29 @@ int runView(const ViewOptions& o) {
         int curve = static_cast<int>(parseToneCurve(renderSettings.toneCurve).ok() ? *parseToneCurve(renderSettings.toneCurve) : ToneCurve::Aces);
         auto drawSide = [&](Side& side, bool isB, Rect area, std::optional<Rect> scissor) -> Rect {
             const gl::Texture* texture = nullptr;
-            const gl::Texture* pointSource = nullptr;
+            const DebugView* points = nullptr;  // a points view, drawn over the image
             DebugEncoding encoding = DebugEncoding::Radiance;
             float viewScale = 1.0f;
+            int level = 0;
+            std::vector<DebugView> views;
             if (isB && bSource == BSource::Image) {
                 if (bImageTexture) texture = &bImageTexture;
             } else if (side.pipeline) {
                 texture = &side.pipeline->output(static_cast<Component>(component));
-                if (!side.view.empty())
-                    for (const DebugView& v : side.pipeline->debugViews())
-                        if (v.name == side.view) {
-                            if (v.encoding == DebugEncoding::Points) {
-                                pointSource = v.texture;  // drawn over the image
-                                break;
-                            }
-                            if (v.texture) texture = v.texture;
-                            else texture = &side.pipeline->output(Component::Indirect);
-                            encoding = v.encoding;
-                            viewScale = v.scale;
+                if (!side.view.empty()) views = side.pipeline->debugViews();
+                for (const DebugView& v : views)
+                    if (v.name == side.view) {
+                        if (v.encoding == DebugEncoding::Points || v.encoding == DebugEncoding::ClusterPoints) {
+                            points = &v;
+                            break;
                         }
+                        if (v.texture) texture = v.texture;
+                        else texture = &side.pipeline->output(Component::Indirect);
+                        encoding = v.encoding;
+                        viewScale = v.scale;
+                        level = v.level;
+                        break;
+                    }
             }
             if (!texture) return {};
             const Rect r = letterbox(static_cast<float>(texture->width()) / static_cast<float>(texture->height()), area);
@@ -854,29 +934,40 @@ int runView(const ViewOptions& o) {
                 glEnable(GL_SCISSOR_TEST);
                 glScissor(scissor->x, scissor->y, scissor->w, scissor->h);
             }
-            const bool array = texture->desc().target == GL_TEXTURE_2D_ARRAY;
+            const GLenum target = texture->desc().target;
+            const bool multisample = target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
+            const bool array = target == GL_TEXTURE_2D_ARRAY || multisample;
+            gl::Program& program = encoding == DebugEncoding::Ids ? *displayIds : multisample ? *displayMs : *display;
             texture->bind(array ? BINDING_TEX_INPUT1 : BINDING_TEX_INPUT0);
             const bool overlay = heatmap && metrics.valid && heatTexture && side.view.empty();
             if (overlay) heatTexture.bind(BINDING_TEX_INPUT2);
-            display->set("u_exposure", renderSettings.exposure);
-            display->set("u_curve", curve);
-            display->set("u_encoding", static_cast<int>(encoding));
-            display->set("u_scale", viewScale);
-            display->set("u_array", array ? 1 : 0);
-            display->set("u_layer", static_cast<float>(std::clamp(layer, 0, std::max(0, texture->desc().depth - 1))));
-            display->set("u_overlay", overlay ? viewer.heatmapOpacity : 0.0f);
-            display->use();
+            program.set("u_exposure", renderSettings.exposure);
+            program.set("u_curve", curve);
+            program.set("u_encoding", static_cast<int>(encoding));
+            program.set("u_scale", viewScale);
+            program.set("u_array", array ? 1 : 0);
+            program.set("u_layer", static_cast<float>(std::clamp(layer, 0, std::max(0, texture->desc().depth - 1))));
+            program.set("u_level", level);
+            program.set("u_samples", texture->desc().samples);
+            program.set("u_overlay", overlay ? viewer.heatmapOpacity : 0.0f);
+            program.use();
             (*context)->bindEmptyVertexArray();
             glDrawArrays(GL_TRIANGLES, 0, 3);
-            if (pointSource && pointSource->desc().target == GL_TEXTURE_2D_ARRAY) {
-                const gl::TextureDesc& d = pointSource->desc();
-                pointSource->bind(BINDING_TEX_INPUT1);
-                points->set("u_gridSize", glm::ivec2(d.width, d.height));
-                points->set("u_clipFromWorld", render::cameraView(camera, side.pipeline->size()).clipFromWorld());
-                points->set("u_pointSize", 7.0f);
-                points->use();
+            if (points && points->texture && points->texture->desc().target == GL_TEXTURE_2D_ARRAY) {
+                const gl::TextureDesc& d = points->texture->desc();
+                // The level's size as GL has it (a pyramid level halves with floor, as GL's mip chain).
+                GLint w = 0, h = 0;
+                glGetTextureLevelParameteriv(points->texture->id(), points->level, GL_TEXTURE_WIDTH, &w);
+                glGetTextureLevelParameteriv(points->texture->id(), points->level, GL_TEXTURE_HEIGHT, &h);
+                points->texture->bind(BINDING_TEX_INPUT1);
+                pointsProgram->set("u_gridSize", glm::ivec2(w, h));
+                pointsProgram->set("u_level", points->level);
+                pointsProgram->set("u_mean", points->encoding == DebugEncoding::ClusterPoints ? 1 : 0);
+                pointsProgram->set("u_clipFromWorld", render::cameraView(camera, side.pipeline->size()).clipFromWorld());
+                pointsProgram->set("u_pointSize", points->scale);
+                pointsProgram->use();
                 glEnable(GL_PROGRAM_POINT_SIZE);
-                glDrawArrays(GL_POINTS, 0, d.width * d.height * d.depth);
+                glDrawArrays(GL_POINTS, 0, w * h * d.depth);
                 glDisable(GL_PROGRAM_POINT_SIZE);
             }
             glDisable(GL_SCISSOR_TEST);
@@ -922,7 +1013,11 @@ int runView(const ViewOptions& o) {
                             side.view.clear();
                             side.settingView.clear();
                             side.rebuild = true;
-                            if (&side == &b) bSource = BSource::Technique;
+                            if (&side == &b) {
+                                bSource = BSource::Technique;
+                                background.stop();
+                                referenceActive = false;
+                            }
                         }
                     }
                 ImGui::EndCombo();
@@ -955,7 +1050,8 @@ int runView(const ViewOptions& o) {
                 ImGui::EndCombo();
             }
             for (const DebugView& v : views)
-                if (v.name == a.view && v.texture && v.texture->desc().target == GL_TEXTURE_2D_ARRAY)
+                if (v.name == a.view && v.texture && v.encoding != DebugEncoding::Points && v.encoding != DebugEncoding::ClusterPoints &&
+                    (v.texture->desc().target == GL_TEXTURE_2D_ARRAY || v.texture->desc().target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY))
                     ImGui::SliderInt("layer", &layer, 0, v.texture->desc().depth - 1);
         }
         const glm::ivec2 shownSize = a.pipeline ? a.pipeline->size() : renderSize;
@@ -993,7 +1089,10 @@ int runView(const ViewOptions& o) {
             if (ImGui::Button(progress.running ? "restart reference" : "render reference")) startReference(viewer.referenceSpp);
             if (progress.running) {
                 ImGui::SameLine();
-                if (ImGui::Button("stop")) background.stop();
+                if (ImGui::Button("stop")) {
+                    background.stop();
+                    referenceActive = false;  // stopped on purpose: moving the camera does not restart it
+                }
             }
             if (progress.samplesTarget > 0) {
                 const float fraction = static_cast<float>(progress.samplesDone) / static_cast<float>(progress.samplesTarget);
@@ -1077,17 +1176,7 @@ int runView(const ViewOptions& o) {
             status = r.ok() ? "saved " + base + ".png/.exr" : r.error().message;
         }
         if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
-        if (ImGui::CollapsingHeader("A settings", ImGuiTreeNodeFlags_DefaultOpen)) settingsEditor(a);
-        if (showsB() && bSource == BSource::Technique && ImGui::CollapsingHeader("B settings")) settingsEditor(b);
-        if (ImGui::CollapsingHeader("renderer settings")) {
-            ImGuiSettingsEditor editor;
-            renderSettings.visitSettings(editor);
-            if (editor.changed) a.rebuild = b.rebuild = true;
-        }
-        if (ImGui::CollapsingHeader("viewer settings")) {
-            ImGuiSettingsEditor editor;
-            viewer.visitSettings(editor);
-        }
+        // The frame time and counters above the (long) settings, so that they are on screen.
         if (ImGui::CollapsingHeader("frame time", ImGuiTreeNodeFlags_DefaultOpen)) {
             // Stacked bars: one per frame, one segment per pass ("frame", the total, is not stacked).
             const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -1117,6 +1206,8 @@ int runView(const ViewOptions& o) {
                 }
             }
             dl->PopClipRect();
+            graphRect = {origin.x, origin.y, width, height};
+            graphBars = history.size();
             ImGui::Dummy(ImVec2(width, height));
             ImGui::TextDisabled("peak %.1f ms GPU over %zu frames", peak, history.size());
             for (const auto& p : a.stats.passes) {
@@ -1133,6 +1224,17 @@ int runView(const ViewOptions& o) {
         }
         if (ImGui::CollapsingHeader("counters", ImGuiTreeNodeFlags_DefaultOpen))
             for (const auto& [k, val] : a.stats.counters) ImGui::Text("%-28s %10.0f", k.c_str(), val);
+        if (ImGui::CollapsingHeader("A settings", ImGuiTreeNodeFlags_DefaultOpen)) settingsEditor(a);
+        if (showsB() && bSource == BSource::Technique && ImGui::CollapsingHeader("B settings")) settingsEditor(b);
+        if (ImGui::CollapsingHeader("renderer settings")) {
+            ImGuiSettingsEditor editor;
+            renderSettings.visitSettings(editor);
+            if (editor.changed) a.rebuild = b.rebuild = true;
+        }
+        if (ImGui::CollapsingHeader("viewer settings")) {
+            ImGuiSettingsEditor editor;
+            viewer.visitSettings(editor);
+        }
         for (Side* side : {&a, &b})
             if (!side->error.empty()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s: %s", side->label.c_str(), side->error.c_str());
         ImGui::End();

@@ -58,14 +58,19 @@ enum class DebugEncoding {
     Color,     // values in [0, 1] shown as they are (albedo)
     Scalar,    // the red channel / `scale`, through the heat-map colour ramp
     Points,    // a 2D array of world positions (w > 0 valid), drawn as points over the image
+    ClusterPoints,  // a 2D array of sums of world positions with their count in w (a min-max pyramid
+                    // level: hisr's VPL tree), drawn as points at the means over the image
+    Ids,       // unsigned integers (a R32UI 2D array: radiosity's ID hemicubes), a colour per value, 0 black
 };
 
 struct DebugView {
     std::string name;                     // "gbuffer.normal", "rsm.flux"
     const gl::Texture* texture = nullptr;  // null for a setting-driven view
     DebugEncoding encoding = DebugEncoding::Radiance;
-    float scale = 1.0f;                   // Scalar: the value shown at the top of the ramp; Radiance: a multiplier
+    float scale = 1.0f;                   // Scalar: the value shown at the top of the ramp; Radiance: a multiplier;
+                                          // Points, ClusterPoints: the dot's diameter in pixels
     std::string setting, value;           // setting-driven: set `setting` = `value`, show the indirect output
+    int level = 0;                        // the mip level shown (ClusterPoints: the pyramid level drawn)
 };
 
 class Technique : public Configurable {

@@ -2,8 +2,10 @@
 // screenshots and captures). Exit 0 when the assertion holds, 1 with one line saying why not.
 //   halves FILE MIN MAX        mean |left half - right half| over pixels and channels is in [MIN, MAX]
 //                              (a side-by-side screenshot: the two halves show A and B)
-//   nonblank FILE MIN          standard deviation of luminance over the image is at least MIN
+//   nonblank FILE MIN [X Y W H]  standard deviation of luminance over the image (or the W x H region
+//                              at X, Y, pixels from the top left) is at least MIN
 //   differ A B MIN MAX         relMSE of A against B (metrics/ErrorMetrics.h) is in [MIN, MAX]
+//   size FILE W H              the image is W x H pixels
 #include "core/ImageIo.h"
 #include "metrics/ErrorMetrics.h"
 
@@ -48,15 +50,25 @@ int main(int argc, char** argv) {
             }
         return inRange((std::string("halves of ") + argv[2]).c_str(), sum / (3.0 * half * img.height()), std::atof(argv[3]), std::atof(argv[4]));
     }
-    if (mode == "nonblank" && argc == 4) {
+    if (mode == "nonblank" && (argc == 4 || argc == 8)) {
         const Image img = load(argv[2]);
-        double s = 0.0, s2 = 0.0;
-        for (const glm::vec3& p : img.pixels()) {
-            const double l = luminance(p);
-            s += l;
-            s2 += l * l;
+        int x0 = 0, y0 = 0, w = img.width(), h = img.height();
+        if (argc == 8) {
+            x0 = std::atoi(argv[4]), y0 = std::atoi(argv[5]), w = std::atoi(argv[6]), h = std::atoi(argv[7]);
+            if (x0 < 0 || y0 < 0 || w <= 0 || h <= 0 || x0 + w > img.width() || y0 + h > img.height()) {
+                std::fprintf(stderr, "bounce_image_check: region %d,%d %dx%d is not inside %s (%dx%d)\n", x0, y0, w, h, argv[2],
+                             img.width(), img.height());
+                return 1;
+            }
         }
-        const double n = static_cast<double>(img.pixelCount());
+        double s = 0.0, s2 = 0.0;
+        for (int y = y0; y < y0 + h; ++y)
+            for (int x = x0; x < x0 + w; ++x) {
+                const double l = luminance(img.at(x, y));
+                s += l;
+                s2 += l * l;
+            }
+        const double n = static_cast<double>(w) * h;
         const double sd = std::sqrt(std::max(0.0, s2 / n - (s / n) * (s / n)));
         return inRange((std::string("luminance deviation of ") + argv[2]).c_str(), sd, std::atof(argv[3]), 1e30);
     }
@@ -69,6 +81,12 @@ int main(int argc, char** argv) {
         return inRange((std::string("relMSE of ") + argv[2] + " vs " + argv[3]).c_str(), relativeSquaredErrorMap(a, b).mean(),
                        std::atof(argv[4]), std::atof(argv[5]));
     }
-    std::fprintf(stderr, "usage: bounce_image_check halves FILE MIN MAX | nonblank FILE MIN | differ A B MIN MAX\n");
+    if (mode == "size" && argc == 5) {
+        const Image img = load(argv[2]);
+        const bool ok = img.width() == std::atoi(argv[3]) && img.height() == std::atoi(argv[4]);
+        std::printf("%s size of %s: %dx%d (expected %sx%s)\n", ok ? "ok" : "FAILED", argv[2], img.width(), img.height(), argv[3], argv[4]);
+        return ok ? 0 : 1;
+    }
+    std::fprintf(stderr, "usage: bounce_image_check halves FILE MIN MAX | nonblank FILE MIN [X Y W H] | differ A B MIN MAX | size FILE W H\n");
     return 1;
 }

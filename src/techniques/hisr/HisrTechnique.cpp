@@ -119,6 +119,19 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
     m_gathered = true;
 }
 
+void HisrTechnique::debugViews(std::vector<DebugView>& out) const {
+    if (m_rsm) m_rsm->debugViews(out);
+    if (!m_light || m_light->levels() == 0) return;  // the tree exists after the first frame
+    const int rootLevel = m_light->levels() - 1;
+    for (int depth = 0; depth <= std::min(m_maxDepth, rootLevel); ++depth) {
+        // Smaller dots for the finer levels (4x the nodes per level), so that each level stays legible.
+        const float dot = std::max(2.0f, 7.0f - 2.0f * static_cast<float>(depth));
+        DebugView v{fmt::format("hisr.tree.depth{}", depth), &m_light->geometry(), DebugEncoding::ClusterPoints, dot};
+        v.level = rootLevel - depth;
+        out.push_back(std::move(v));
+    }
+}
+
 void HisrTechnique::collectCounters(Counters& out) {
     if (!m_gathered) return;
     const double total = m_eye->collectCounters(out);

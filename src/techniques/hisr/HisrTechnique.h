@@ -17,9 +17,9 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void collectCounters(Counters& out) override;
-    void debugViews(std::vector<DebugView>& out) const override {
-        if (m_rsm) m_rsm->debugViews(out);
-    }
+    // The RSM's views and the VPL tree: "hisr.tree.depthD", the nodes a fragment's walk may visit D
+    // levels below the roots (D = 0: the rootGrid^2 roots), as dots at their mean VPL positions.
+    void debugViews(std::vector<DebugView>& out) const override;
 
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
 

@@ -37,7 +37,7 @@ public:
     std::vector<VplRecord> download() const;
     // The viewer's "vpl.points": the VPLs' positions as points over the image.
     void debugViews(std::vector<DebugView>& out) const {
-        if (m_position) out.push_back({"vpl.points", &m_position, DebugEncoding::Points});
+        if (m_position) out.push_back({"vpl.points", &m_position, DebugEncoding::Points, 7.0f});
     }
 
 private:

@@ -53,6 +53,7 @@ constexpr float kAutoMapSizeFraction = 0.1f;   // bundle width 2h = a tenth of t
 constexpr float kAutoStepBackFraction = 0.25f;  // b = h / 4: close to the hit, as Fig. 4 draws it
 constexpr float kAutoDepthFactor = 2.0f;        // D = b + 2 (2h): receivers up to twice the width past the hit
 constexpr float kAutoToleranceTexels = 2.0f;    // depth tolerance: two map texels of slope
+constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
 
 template <size_t N>
 int indexOf(const std::array<std::string_view, N>& list, std::string_view s) {
@@ -137,6 +138,13 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_CHECK(m_accumFbo.complete(), "photon-splat accumulation framebuffer");
     m_outFbo = gl::Framebuffer::create("photon-splat.outFbo");
     m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(capacity) * sizeof(gpu::BundleGpu));
+    gl::TextureDesc points;
+    points.target = GL_TEXTURE_2D_ARRAY;
+    points.format = GL_RGBA32F;
+    points.width = std::min(capacity, kBundlePointsWidth);  // rows of 256: within any texture width limit
+    points.height = (capacity + points.width - 1) / points.width;
+    points.minFilter = points.magFilter = GL_NEAREST;
+    m_bundlePoints = gl::Texture::create("photon-splat.bundlePoints", points);
     m_caster.reset();
     m_casterTime = -1.0f;
     return {};
@@ -210,6 +218,16 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                                                             glm::vec4(b.power, 0.0f)};
     }
     if (count > 0) m_bundleBuffer.upload(0, gpuBundles.size() * sizeof(gpu::BundleGpu), gpuBundles.data());
+    {
+        // The debug view's points, rewritten whole so that texels of an earlier, larger frame read as empty.
+        const gl::TextureDesc& d = m_bundlePoints.desc();
+        std::vector<glm::vec4> hits(static_cast<size_t>(d.width) * static_cast<size_t>(d.height), glm::vec4(0.0f));
+        for (int i = 0; i < count && i < static_cast<int>(hits.size()); ++i) {
+            const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
+            hits[static_cast<size_t>(i)] = glm::vec4(b.origin + std::min(m_back, 0.5f * b.hitDistance) * b.direction, 1.0f);
+        }
+        glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, d.width, d.height, 1, GL_RGBA, GL_FLOAT, hits.data());
+    }
 
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 0, zero);

@@ -21,6 +21,8 @@ public:
     std::string_view frameReadbackReason() const override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
+        // Where each bundle of the frame is centred: its photon's hit point (5-pixel dots).
+        if (m_bundlePoints) out.push_back({"photon-splat.bundles", &m_bundlePoints, DebugEncoding::Points, 5.0f});
         for (size_t i = 1; i < kDebugViews.size(); ++i)
             out.push_back({"photon-splat." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
                            std::string(kDebugViews[i])});
@@ -77,6 +79,9 @@ private:
     std::vector<photonsplat::Bundle> m_bundles;
     gl::Buffer m_bundleBuffer;
     gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
+    // The viewer's "photon-splat.bundles": RGBA32F 2D array (one layer), texel i = bundle i's hit point
+    // (xyz, w = 1), w = 0 past the frame's bundles.
+    gl::Texture m_bundlePoints;
     gl::Framebuffer m_mapFbo, m_accumFbo, m_outFbo;
     gl::Program m_depthProgram, m_splat, m_resolve, m_blurProgram;
 };

@@ -93,6 +93,12 @@ public:
     uint32_t hemicubesRendered() const { return m_hemicubes; }
     void resetCounters() { m_hemicubes = 0; }
     float emittedPower() const { return m_emittedPower; }  // sum of A E luminance over emitters
+    // The hemicube arrays as the last batch left them (the viewer's debug views): five layers per
+    // hemicube of the batch, 5 k + 0 the top face (R x R), 5 k + 1..4 the sides (the lower R/2 rows).
+    const gl::Texture& idHemicubes(bool old) const { return old ? m_idA : m_idB; }  // R32UI: surface + 1 of the quad seen, 0 none
+    const gl::Texture& shotHemicubes() const { return m_shot; }
+    const gl::Texture& backHemicubes(bool old) const { return old ? m_backOld : m_backNew; }
+    const gl::Texture& radiosityHemicubes() const { return m_radMs; }  // multisampled (gather)
 
 private:
     void bindCommon() const;

@@ -53,6 +53,19 @@ namespace bounce {
 
 using namespace radiosity;
 
+void RadiosityTechnique::debugViews(std::vector<DebugView>& out) const {
+    if (!m_system) return;
+    const HemicubeUse use = hemicubeUse();
+    if (use.radiosity) out.push_back({"radiosity.hemicube.radiosity", &m_system->radiosityHemicubes(), DebugEncoding::Radiance});
+    if (use.id) out.push_back({"radiosity.hemicube.id", &m_system->idHemicubes(false), DebugEncoding::Ids});
+    if (use.idOld) out.push_back({"radiosity.hemicube.idOld", &m_system->idHemicubes(true), DebugEncoding::Ids});
+    if (use.shotAndBack) {
+        out.push_back({"radiosity.hemicube.shot", &m_system->shotHemicubes(), DebugEncoding::Radiance});
+        out.push_back({"radiosity.hemicube.backOld", &m_system->backHemicubes(true), DebugEncoding::Radiance});
+        out.push_back({"radiosity.hemicube.back", &m_system->backHemicubes(false), DebugEncoding::Radiance});
+    }
+}
+
 void RadiosityTechnique::visitSettings(SettingsVisitor& v) {
     v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given)", 1e-4f, 100.0f);
     v.field("dynamicElementSize", m_dynamicElementSize, "metres between element centres on animated objects", 1e-4f, 100.0f);

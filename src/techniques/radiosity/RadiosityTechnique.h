@@ -18,6 +18,11 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     bool ownsDirect() const override { return true; }
+    // The hemicubes of the last batch the method rendered, those it uses (hemicubeUse): "radiosity.
+    // hemicube.id" (the ID hemicubes of its shooters), ".idOld" (the same against the old transforms),
+    // ".shot", ".backOld", ".back" (cross redistribution), ".radiosity" (the gather's). Layer 5 k is
+    // hemicube k's top face, 5 k + 1..4 its half-high sides.
+    void debugViews(std::vector<DebugView>& out) const override;
     std::string_view frameReadbackReason() const override {
         return "van de Hoef (2013) FINDSHOOTINGQUAD: each quad's unshot power is read back for the CPU's "
                "arg-max over the quads, the thesis's own CPU-GPU stall";
@@ -39,6 +44,11 @@ protected:
     virtual void visitMethodSettings(SettingsVisitor&) {}
     // Options the method fixes (gather uses no back hemicubes, ...).
     virtual void adjustOptions(radiosity::SystemOptions&) const {}
+    // The hemicubes the method renders (only those hold anything to show); shooting: ID hemicubes.
+    struct HemicubeUse {
+        bool radiosity = false, id = true, idOld = false, shotAndBack = false;
+    };
+    virtual HemicubeUse hemicubeUse() const { return {}; }
 
     // Alg. 4.2 SHOOTINGITERATION until the brightest quad's mean unshot radiance is below the
     // threshold or `maxIterations` quads have shot (at least `minIterations`, even if converged).

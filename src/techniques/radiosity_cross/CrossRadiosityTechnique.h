@@ -19,6 +19,7 @@ protected:
     void solve(FrameContext& ctx) override;
     void visitMethodSettings(SettingsVisitor& v) override;
     void adjustOptions(radiosity::SystemOptions& o) const override;
+    HemicubeUse hemicubeUse() const override { return {.id = true, .idOld = true, .shotAndBack = true}; }
 
 private:
     void redistribute(FrameContext& ctx, bool insert);

@@ -14,6 +14,7 @@ protected:
     void solve(FrameContext& ctx) override;
     void visitMethodSettings(SettingsVisitor& v) override;
     void adjustOptions(radiosity::SystemOptions& o) const override;
+    HemicubeUse hemicubeUse() const override { return {.radiosity = true, .id = false}; }
 
 private:
     int m_bounces = 8;

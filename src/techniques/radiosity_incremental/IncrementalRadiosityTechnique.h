@@ -10,6 +10,7 @@ public:
 
 protected:
     void solve(FrameContext& ctx) override;
+    HemicubeUse hemicubeUse() const override { return {.id = true, .idOld = true}; }
 
 private:
     void redistribute(FrameContext& ctx);
