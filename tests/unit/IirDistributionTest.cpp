@@ -1145,3 +1145,53 @@ TEST(IirTileAssignment, SurvivingVplsKeepTheirTileAcrossFrames) {
     // tiles, every frame); 2 leaves room for a frame that loses several VPLs of one tile.
     EXPECT_LE(worstSpread, 2u);
 }
+
+// Determinism (docs/reliability.md "Determinism"): what the triangulations report must not depend on
+// how CGAL happens to hold them. CGAL's faces and circulators start wherever its memory layout put
+// them, which differed between runs (address-space randomisation made iir differ after a few frames).
+// The same sites reached by different histories (insertion order, an extra site inserted and
+// removed) stand in for different layouts: cell areas, the largest empty circle, the shortest edge and
+// its victim must agree to the bit.
+namespace {
+template <class Triangulation>
+void expectSameWhateverTheHistory(bool sphere) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<DomainTriangulation::Site> sites;
+    for (SlotId slot = 0; slot < 40; ++slot) {
+        glm::dvec3 p;
+        do p = glm::dvec3(u(rng), u(rng), sphere ? u(rng) : 0.0);
+        while (glm::length(p) > 1.0 || glm::length(p) < 0.1);
+        sites.push_back({slot, sphere ? glm::normalize(p) : p});
+    }
+    // A symmetric pair of equally short edges: the tie must go to the lower slots either way.
+    const glm::dvec3 extra[4] = {{0.0, 0.001, 0.0}, {0.0, -0.001, 0.0}, {0.5, 0.001, 0.0}, {0.5, -0.001, 0.0}};
+    for (SlotId k = 0; k < 4; ++k) sites.push_back({40 + k, sphere ? glm::normalize(extra[k] + glm::dvec3(0, 0, 1)) : extra[k]});
+
+    Triangulation forward(64, 1), backward(64, 1);
+    for (const auto& s : sites) ASSERT_TRUE(forward.insert(s));
+    ASSERT_TRUE(backward.insert({60, sphere ? glm::normalize(glm::dvec3(0.3, 0.2, 0.9)) : glm::dvec3(0.3, 0.2, 0.0)}));
+    for (auto s = sites.rbegin(); s != sites.rend(); ++s) ASSERT_TRUE(backward.insert(*s));
+    backward.remove(60);
+
+    std::vector<double> a(64), b(64);
+    forward.cellAreas(a);
+    backward.cellAreas(b);
+    for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "cell " << i;
+    const auto ca = forward.largestEmptyCircle(), cb = backward.largestEmptyCircle();
+    EXPECT_EQ(ca.radius, cb.radius);
+    EXPECT_EQ(ca.centre, cb.centre);
+    const auto ea = forward.shortestEdge(), eb = backward.shortestEdge();
+    ASSERT_TRUE(ea && eb);
+    EXPECT_EQ(std::pair(ea->a, ea->b), std::pair(eb->a, eb->b));
+    EXPECT_EQ(forward.shortestEdgeVictim(), backward.shortestEdgeVictim());
+}
+}  // namespace
+
+TEST(IirDeterminism, DiscTriangulationReportsTheSameWhateverItsHistory) {
+    expectSameWhateverTheHistory<DiscTriangulation>(false);
+}
+
+TEST(IirDeterminism, SphereTriangulationReportsTheSameWhateverItsHistory) {
+    expectSameWhateverTheHistory<SphereTriangulation>(true);
+}

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
 #include <random>
 #include <utility>
 
@@ -27,6 +28,10 @@ using VertexHandle = Delaunay::Vertex_handle;
 using CgalPoint = Kernel::Point_2;
 
 glm::dvec2 toGlm(const CgalPoint& p) { return glm::dvec2(p.x(), p.y()); }
+
+DomainTriangulation::Edge orderedEdge(SlotId a, SlotId b, double length) {
+    return a < b ? DomainTriangulation::Edge{a, b, length} : DomainTriangulation::Edge{b, a, length};
+}
 
 }  // namespace
 
@@ -57,6 +62,7 @@ struct DiscTriangulation::Impl {
     }
     void refreshCells() {
         std::vector<glm::dvec2> around;
+        std::vector<SlotId> aroundSlots;
         for (SlotId slot : dirtySlots) {
             cellDirty[slot] = 0;
             const VertexHandle v = vertexBySlot[slot];
@@ -65,13 +71,24 @@ struct DiscTriangulation::Impl {
                 continue;
             }
             around.clear();
+            aroundSlots.clear();
             if (dt.dimension() >= 1) {
                 Delaunay::Vertex_circulator it = dt.incident_vertices(v), done = it;
                 if (it != nullptr) {
                     do {
-                        if (!dt.is_infinite(it)) around.push_back(toGlm(it->point()));
+                        if (!dt.is_infinite(it)) {
+                            around.push_back(toGlm(it->point()));
+                            aroundSlots.push_back(it->info());
+                        }
                     } while (++it != done);
                 }
+            }
+            // The circulator starts at whichever neighbour the vertex's face happens to hold, which
+            // follows CGAL's memory layout (runs differed with address-space randomisation). Starting
+            // the counter-clockwise list at the lowest slot makes the cell's sums the same every run.
+            if (!aroundSlots.empty()) {
+                const auto first = std::min_element(aroundSlots.begin(), aroundSlots.end()) - aroundSlots.begin();
+                std::rotate(around.begin(), around.begin() + first, around.end());
             }
             cellBySlot[slot] = computeDiscCell(toGlm(v->point()), around, tieAngle);
         }
@@ -177,7 +194,12 @@ std::optional<DomainTriangulation::Edge> DiscTriangulation::shortestEdge() const
         const VertexHandle a = e->first->vertex(Delaunay::ccw(e->second));
         const VertexHandle b = e->first->vertex(Delaunay::cw(e->second));
         const double length = glm::distance(toGlm(a->point()), toGlm(b->point()));
-        if (!best || length < best->length) best = Edge{a->info(), b->info(), length};
+        // Equal lengths (symmetric layouts) go to the lower pair of slots, not to the first edge the
+        // iteration meets: CGAL's iteration order is not the same from run to run.
+        const Edge edge = orderedEdge(a->info(), b->info(), length);
+        if (!best || edge.length < best->length ||
+            (edge.length == best->length && std::pair(edge.a, edge.b) < std::pair(best->a, best->b)))
+            best = edge;
     }
     return best;
 }
