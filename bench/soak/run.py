@@ -62,17 +62,9 @@ RESOURCE_KEYS = ["gl_objects", "buffers", "textures", "framebuffers", "programs"
 
 
 def techniques(bounce):
-    out = subprocess.run([bounce, "list"], capture_output=True, text=True, check=True).stdout
-    names, inside = [], False
-    for line in out.splitlines():
-        if line.startswith("techniques"):
-            inside = True
-            continue
-        if inside and line and not line.startswith(" "):
-            break
-        if inside and line.startswith("  ") and not line.startswith("   "):
-            names.append(line.split()[0])
-    return names
+    """Every registered technique, as `bounce list --techniques --names` prints them (one per line)."""
+    out = subprocess.run([bounce, "list", "--techniques", "--names"], capture_output=True, text=True, check=True).stdout
+    return out.split()
 
 
 def settings_for(technique, check):
