@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,12 +15,17 @@
 
 namespace bounce::fuzz {
 
-// $TMPDIR (or /tmp)/bounce-fuzz-PID, created on first use and holding a copy of scenes/models, so that
+// $TMPDIR (or /tmp)/bounce-fuzz-PID (ten digits), created on first use and holding a copy of scenes/models, so that
 // scene files in the corpus can place the repository's example models ("models/cube.obj").
 inline const std::filesystem::path& scratchFolder() {
     static const std::filesystem::path folder = [] {
         const char* tmp = std::getenv("TMPDIR");
-        std::filesystem::path f = std::filesystem::path(tmp && *tmp ? tmp : "/tmp") / ("bounce-fuzz-" + std::to_string(getpid()));
+        // The process id zero-padded to a fixed width: input paths appear in error messages, whose
+        // formatting is instrumented too, so a path one digit longer would change the coverage the
+        // fuzzer steers by, and a seeded run would not repeat from one process to the next.
+        char pid[16];
+        std::snprintf(pid, sizeof pid, "%010d", static_cast<int>(getpid()));
+        std::filesystem::path f = std::filesystem::path(tmp && *tmp ? tmp : "/tmp") / (std::string("bounce-fuzz-") + pid);
         std::filesystem::remove_all(f);
         std::filesystem::create_directories(f);
         std::filesystem::copy(std::filesystem::path(BOUNCE_SOURCE_DIR) / "scenes/models", f / "models",

@@ -4,7 +4,8 @@
 # Replays tests/fuzz/corpus/NAME and tests/fuzz/regressions/NAME, then fuzzes for SECONDS from a fixed
 # seed (BOUNCE_FUZZ_SEED, default 1) and an empty WORK/corpus: libFuzzer's inputs are then a function of
 # the binary, the committed corpus and the seed, and time only decides how far along that sequence a
-# run gets, so a run that was clean for 240 s here is clean for 60 s on CI unless bounce changed. Set
+# run gets: a run that was clean for 240 s here is clean for 60 s on CI unless bounce changed
+# (docs/reliability.md "Fuzzing"). Set
 # BOUNCE_FUZZ_SEED=0 for a random seed (libFuzzer prints the one it took) to explore further. A crash, an
 # abort (BOUNCE_CHECK, a sanitizer report, an invariant of the target), a leak, an input slower than
 # 10 s or a process above 2 GB fails the run; the input is saved under WORK/artifacts and the message

@@ -1192,6 +1192,8 @@ TEST(IirDeterminism, DiscTriangulationReportsTheSameWhateverItsHistory) {
     expectSameWhateverTheHistory<DiscTriangulation>(false);
 }
 
-TEST(IirDeterminism, SphereTriangulationReportsTheSameWhateverItsHistory) {
-    expectSameWhateverTheHistory<SphereTriangulation>(true);
-}
+// The sphere's triangulation (point lights) still reports in CGAL's order: reading it in slot order
+// changed the sequence of inserted sites enough to trip CGAL's own check when a site raises the
+// triangulation from a circle to the sphere (Delaunay_triangulation_on_sphere_2.h:497, enabled in the
+// sanitizer build, in IirVplDistribution.RegenerateEverythingEachFrame), so that change was backed out;
+// docs/reliability.md "Determinism".

@@ -17,8 +17,6 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <random>
 #include <utility>
@@ -47,20 +45,6 @@ constexpr double kCoplanarTolerance = 1e-9;
 constexpr double kAntipodalTolerance = 1e-12;
 
 glm::dvec3 toGlm(const CgalPoint& p) { return glm::dvec3(p.x(), p.y(), p.z()); }
-
-DomainTriangulation::Edge orderedEdge(SlotId a, SlotId b, double length) {
-    return a < b ? DomainTriangulation::Edge{a, b, length} : DomainTriangulation::Edge{b, a, length};
-}
-
-// A face's vertices rotated to start at the lowest slot (orientation kept): which vertex CGAL stores
-// first follows its history and memory layout, and the circumcentre's rounding follows that order.
-template <class FaceHandleT>
-auto canonicalFace(const FaceHandleT& f) {
-    std::array<decltype(f->vertex(0)), 3> v{f->vertex(0), f->vertex(1), f->vertex(2)};
-    const int first = v[0]->info() <= v[1]->info() && v[0]->info() <= v[2]->info() ? 0 : v[1]->info() <= v[2]->info() ? 1 : 2;
-    std::rotate(v.begin(), v.begin() + first, v.end());
-    return v;
-}
 
 double random01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
@@ -117,9 +101,6 @@ struct SphereTriangulation::Impl {
         std::vector<VertexHandle> out;
         out.reserve(dt.number_of_vertices());
         for (auto v = dt.vertices_begin(); v != dt.vertices_end(); ++v) out.push_back(v);
-        // By slot, not in CGAL's iteration order, which follows its memory layout and so differed
-        // between runs (address-space randomisation): every result below is then the same each run.
-        std::sort(out.begin(), out.end(), [](const VertexHandle& a, const VertexHandle& b) { return a->info() < b->info(); });
         return out;
     }
 
@@ -233,10 +214,8 @@ std::optional<DomainTriangulation::Edge> SphereTriangulation::shortestEdge() con
     std::vector<Edge> all;
     edges(all);
     std::optional<Edge> best;
-    // Equal lengths go to the lower pair of slots (edges() orders each pair), not to the first edge met.
     for (const Edge& e : all)
-        if (!best || e.length < best->length || (e.length == best->length && std::pair(e.a, e.b) < std::pair(best->a, best->b)))
-            best = e;
+        if (!best || e.length < best->length) best = e;
     return best;
 }
 
@@ -268,20 +247,14 @@ DomainTriangulation::EmptyCircle SphereTriangulation::largestEmptyCircle() {
     // circumcentre of a Delaunay face: the outward normal of a hull facet, where its empty cap is
     // centred.
     EmptyCircle best{glm::dvec3(0.0), -1.0};
-    std::array<SlotId, 3> bestKey{};
     for (auto f = m.dt.all_faces_begin(); f != m.dt.all_faces_end(); ++f) {
-        const std::array<VertexHandle, 3> v = canonicalFace(f);
-        const glm::dvec3 a = toGlm(v[0]->point());
-        const glm::dvec3 n = outwardNormal(a, toGlm(v[1]->point()), toGlm(v[2]->point()));
+        const glm::dvec3 a = toGlm(f->vertex(0)->point());
+        const glm::dvec3 n = outwardNormal(a, toGlm(f->vertex(1)->point()), toGlm(f->vertex(2)->point()));
         const double length = glm::length(n);
         if (!(length > 0.0)) continue;
         const glm::dvec3 centre = n / length;
         const double radius = glm::distance(centre, a);
-        const std::array<SlotId, 3> key{v[0]->info(), v[1]->info(), v[2]->info()};
-        if (radius > best.radius || (radius == best.radius && key < bestKey)) {
-            best = EmptyCircle{centre, radius};
-            bestKey = key;
-        }
+        if (radius > best.radius) best = EmptyCircle{centre, radius};
     }
     return best;
 }
@@ -315,21 +288,15 @@ void SphereTriangulation::cellAreas(std::span<double> areas) {
     // The cell of site p is the spherical polygon of the circumcentres of its incident faces, in the
     // circulator's (counter-clockwise) order; sum the triangles (p, c_k, c_k+1).
     std::vector<glm::dvec3> corners;
-    std::vector<std::array<SlotId, 3>> keys;
     for (const VertexHandle& v : all) {
         const glm::dvec3 p = toGlm(v->point());
         corners.clear();
-        keys.clear();
         Delaunay::Face_circulator f = m.dt.incident_faces(v), done = f;
         do {
-            const std::array<VertexHandle, 3> c = canonicalFace(f);
-            const glm::dvec3 n = outwardNormal(toGlm(c[0]->point()), toGlm(c[1]->point()), toGlm(c[2]->point()));
+            const glm::dvec3 n = outwardNormal(toGlm(f->vertex(0)->point()), toGlm(f->vertex(1)->point()),
+                                               toGlm(f->vertex(2)->point()));
             corners.push_back(glm::normalize(n));
-            keys.push_back({c[0]->info(), c[1]->info(), c[2]->info()});
         } while (++f != done);
-        // The same sum every run: start at the face with the lowest slots, not where the circulator
-        // (CGAL's memory layout) starts.
-        std::rotate(corners.begin(), corners.begin() + (std::min_element(keys.begin(), keys.end()) - keys.begin()), corners.end());
         double area = 0.0;
         for (size_t k = 0; k < corners.size(); ++k)
             area += signedSphericalTriangleArea(p, corners[k], corners[(k + 1) % corners.size()]);
@@ -350,14 +317,14 @@ void SphereTriangulation::edges(std::vector<Edge>& out) const {
     const Delaunay& dt = m_impl->dt;
     if (dt.number_of_vertices() == 2) {
         const VertexHandle a = dt.vertices_begin(), b = std::next(dt.vertices_begin());
-        out.push_back(orderedEdge(a->info(), b->info(), glm::distance(toGlm(a->point()), toGlm(b->point()))));
+        out.push_back(Edge{a->info(), b->info(), glm::distance(toGlm(a->point()), toGlm(b->point()))});
         return;
     }
     if (dt.dimension() < 1) return;
     for (auto e = dt.all_edges_begin(); e != dt.all_edges_end(); ++e) {
         const VertexHandle a = e->first->vertex(Delaunay::ccw(e->second));
         const VertexHandle b = e->first->vertex(Delaunay::cw(e->second));
-        out.push_back(orderedEdge(a->info(), b->info(), glm::distance(toGlm(a->point()), toGlm(b->point()))));
+        out.push_back(Edge{a->info(), b->info(), glm::distance(toGlm(a->point()), toGlm(b->point()))});
     }
 }
 
