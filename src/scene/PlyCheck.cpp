@@ -1,6 +1,10 @@
 #include "scene/PlyCheck.h"
 
+#include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <string>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -128,7 +132,52 @@ Expected<void> checkPlyFile(std::string_view bytes, const std::string& where) {
             return bad(fmt::format("unknown keyword \"{}\" (known: format, element, property, comment, obj_info, end_header)", key));
         }
     }
-    if (encoding == Encoding::Ascii) return {};  // assimp's ascii reader reports short bodies itself
+    if (encoding == Encoding::Ascii) {
+        // assimp reads what is not a number as 0 and aborts on a face of 0 indices (an ai_assert in
+        // its triangulation, built into Debian's library; found by fuzz_model): every value must be a
+        // number and a face's index count at least 1. Short bodies assimp reports itself.
+        const std::string_view body = bytes.substr(bodyStart);
+        size_t at = 0;
+        const auto next = [&]() -> std::string_view {
+            while (at < body.size() && std::isspace(static_cast<unsigned char>(body[at]))) ++at;
+            const size_t start = at;
+            while (at < body.size() && !std::isspace(static_cast<unsigned char>(body[at]))) ++at;
+            return body.substr(start, at - start);
+        };
+        const auto number = [](std::string_view token, double& value) {
+            const std::string text(token);
+            char* end = nullptr;
+            value = std::strtod(text.c_str(), &end);
+            return !text.empty() && end == text.c_str() + text.size();
+        };
+        for (const Element& e : elements) {
+            for (uint64_t i = 0; i < e.count; ++i) {
+                for (const Property& p : e.properties) {
+                    const std::string_view token = next();
+                    if (token.empty()) return {};  // short body: assimp's own error
+                    double value = 0.0;
+                    if (!number(token, value))
+                        return makeError("{}: PLY {} {} of {}: \"{}\" is not a number", where, e.name, i, e.count,
+                                         std::string(token.substr(0, 32)));
+                    if (p.countSize == 0) continue;
+                    if (!(value >= 0.0) || value != std::floor(value) || value > 1e9)
+                        return makeError("{}: PLY {} {} of {}: list count \"{}\" is not a count", where, e.name, i,
+                                         e.count, std::string(token));
+                    if (e.name == "face" && value < 1.0)
+                        return makeError("{}: PLY face {} of {} has no vertex index", where, i, e.count);
+                    for (uint64_t k = 0; k < static_cast<uint64_t>(value); ++k) {
+                        const std::string_view item = next();
+                        if (item.empty()) return {};
+                        double v = 0.0;
+                        if (!number(item, v))
+                            return makeError("{}: PLY {} {} of {}: \"{}\" is not a number", where, e.name, i, e.count,
+                                             std::string(item.substr(0, 32)));
+                    }
+                }
+            }
+        }
+        return {};
+    }
 
     // Binary: every declared item must lie inside the file.
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());

@@ -300,3 +300,25 @@ TEST(FuzzRegression, GlbChunkLengthsMustFitTheFile) {
     EXPECT_EQ(good->triangleCount(), 1u);
 }
 
+// fuzz_model: assimp reads a non-number in an ASCII PLY body as 0 and then aborts on the face of 0
+// indices (ai_assert in its triangulation, enabled in Debian's build). bounce checks the ASCII body's
+// values and face counts first.
+TEST(FuzzRegression, AsciiPlyValuesMustBeNumbersAndFacesHaveIndices) {
+    const fs::path file = regression("model", "ascii-face-count-not-a-number.ply");
+    Expected<Scene> scene = loadScene(file.string());
+    ASSERT_FALSE(scene.ok());
+    expectOneLineNaming(scene.error(), file.string());
+    EXPECT_TRUE(contains(scene.error().message, "face 0 of 1")) << scene.error().message;
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 0 1\n";
+    EXPECT_TRUE(checkPlyFile(header + "3 0 2 1\n", "m.ply").ok());
+    EXPECT_TRUE(checkPlyFile(header + "3 0 2", "m.ply").ok()) << "a short body is assimp's to report";
+    auto zero = checkPlyFile(header + "0\n", "m.ply");
+    ASSERT_FALSE(zero.ok());
+    EXPECT_TRUE(contains(zero.error().message, "m.ply: PLY face 0 of 1 has no vertex index")) << zero.error().message;
+    auto word = checkPlyFile(header + "x 0 2 1\n", "m.ply");
+    ASSERT_FALSE(word.ok());
+    EXPECT_TRUE(contains(word.error().message, "\"x\" is not a number")) << word.error().message;
+    EXPECT_FALSE(checkPlyFile(header + "3 0 two 1\n", "m.ply").ok());
+}
+
