@@ -3,6 +3,10 @@
 // dispatch on the file name's extension, as `bounce render --scene FILE` does, so each input becomes a
 // file in a scratch folder of this process, and the loader under test is called on that path: the
 // fuzzer reaches exactly the code the command line runs, with no in-memory variant to drift from it.
+#include "app/Options.h"
+#include "core/Log.h"
+#include "scene/SceneLoader.h"
+
 #include <unistd.h>
 
 #include <cstdint>
@@ -43,6 +47,15 @@ inline std::filesystem::path writeInput(std::string_view name, const uint8_t* da
     out.close();
     if (!out) std::abort();  // the scratch folder must be writable: a broken harness, not a finding
     return path;
+}
+
+// LLVMFuzzerInitialize of the loader targets (scene, model, study): quiet logging (warnings about the
+// input are expected and would bury the fuzzer's own log), the application's scene-setting check
+// installed as `bounce` installs it, and the scratch folder made before the first input.
+inline void initializeLoaderTarget() {
+    setLogLevel("off");
+    setSceneSettingCheck(checkSceneSetting);
+    scratchFolder();
 }
 
 // An internal check the fuzzer must treat as a crash: an input that passed bounce's validation and then

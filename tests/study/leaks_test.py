@@ -12,28 +12,11 @@ import subprocess
 import sys
 import zlib
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from study_support import check, failures, load, runner, write_json  # noqa: E402
+
 BOUNCE, WORK = sys.argv[1], sys.argv[2]
-failures = []
-
-
-def check(condition, message):
-    print(f"{'ok' if condition else 'FAIL'}: {message}")
-    if not condition:
-        failures.append(message)
-
-
-def run(*args):
-    return subprocess.run([BOUNCE, *args], capture_output=True, text=True)
-
-
-def write_json(path, value):
-    with open(path, "w") as f:
-        json.dump(value, f, indent=1)
-
-
-def load(path):
-    with open(path) as f:
-        return json.load(f)
+run = runner(BOUNCE)
 
 
 def png_channels(path):

@@ -6,14 +6,10 @@
 // Corpus: tests/fuzz/corpus/model; inputs that once failed: tests/fuzz/regressions/model.
 #include "../FuzzSupport.h"
 #include "../SceneExercise.h"
-#include "app/Options.h"
-#include "core/Log.h"
 #include "scene/SceneLoader.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    bounce::setLogLevel("off");
-    bounce::setSceneSettingCheck(bounce::checkSceneSetting);
-    bounce::fuzz::scratchFolder();
+    bounce::fuzz::initializeLoaderTarget();
     return 0;
 }
 

@@ -3,14 +3,10 @@
 // Corpus: tests/fuzz/corpus/scene; inputs that once failed: tests/fuzz/regressions/scene.
 #include "../FuzzSupport.h"
 #include "../SceneExercise.h"
-#include "app/Options.h"
-#include "core/Log.h"
 #include "scene/SceneLoader.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    bounce::setLogLevel("off");  // warnings about the input are expected; the fuzzer's log stays readable
-    bounce::setSceneSettingCheck(bounce::checkSceneSetting);
-    bounce::fuzz::scratchFolder();
+    bounce::fuzz::initializeLoaderTarget();
     return 0;
 }
 

@@ -3,15 +3,11 @@
 // registry, jobs expanded). No job is run: that is bounce render and reference, fuzzed through their
 // inputs. Corpus: tests/fuzz/corpus/study; inputs that once failed: tests/fuzz/regressions/study.
 #include "../FuzzSupport.h"
-#include "app/Options.h"
 #include "app/Study.h"
-#include "core/Log.h"
 #include "scene/SceneLoader.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    bounce::setLogLevel("off");
-    bounce::setSceneSettingCheck(bounce::checkSceneSetting);
-    bounce::fuzz::scratchFolder();
+    bounce::fuzz::initializeLoaderTarget();
     return 0;
 }
 
