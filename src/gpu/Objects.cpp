@@ -167,6 +167,20 @@ void Buffer::download(size_t offset, size_t bytes, void* out) const {
     glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), out);
 }
 
+Texture Texture::createBufferView(std::string_view name, const Buffer& buffer, GLenum format) {
+    BOUNCE_CHECK(static_cast<bool>(buffer), "buffer texture '{}' views a buffer", name);
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    Texture t;
+    t.m_handle = Handle<TextureTraits>(id);
+    t.m_desc.target = GL_TEXTURE_BUFFER;
+    t.m_desc.format = format;
+    t.m_desc.width = static_cast<int>(buffer.size() / texelBytes(format));
+    glTextureBuffer(id, format, buffer.id());
+    label(GL_TEXTURE, id, name);
+    return t;
+}
+
 Texture Texture::create(std::string_view name, const TextureDesc& desc) {
     BOUNCE_CHECK(desc.width > 0 && desc.height > 0 && desc.depth > 0 && desc.levels > 0, "texture '{}' has size {}x{}x{}",
                  name, desc.width, desc.height, desc.depth);

@@ -64,6 +64,9 @@ public:
     Texture() = default;
     static Texture create(std::string_view name, const TextureDesc& desc);
     static Texture create2D(std::string_view name, int width, int height, GLenum format, int levels = 1);
+    // A buffer texture (samplerBuffer) over all of `buffer`, read as `format` texels: its storage is the
+    // buffer's (counted there), so the buffer must outlive the view.
+    static Texture createBufferView(std::string_view name, const Buffer& buffer, GLenum format);
     void bind(GLuint unit) const { glBindTextureUnit(unit, m_handle.id()); }
     void bindImage(GLuint unit, GLenum access, int level = 0, bool layered = false, int layer = 0) const;
     // Depth-compare sampling (sampler2DShadow / samplerCubeShadow).

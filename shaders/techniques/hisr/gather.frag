@@ -6,15 +6,16 @@
 // below the roots, and gathers each accepted node as a VPL (mean position and normal, summed flux and
 // area) with the disk-to-point form factor (Eqs. 4.1, 4.5). The light intensity I of Eq. 4.8 is taken
 // as 1 (the thesis's normalised colours) and res_l is the node's level resolution (its solid angle).
-// One draw walks the roots [u_rootFirst, u_rootEnd) (index = (layer * roots.y + y) * roots.x + x); the
+// The tree is tree.comp's Morton-ordered records (the thesis's re-organised VPL tree).
+// One draw walks the roots [u_rootFirst, u_rootEnd) (index = layer * roots per layer + Morton index); the
 // host adds the draws (blending) so that no invocation loops past the shader loop budget
 // (gpu/ShaderLimits.h) however deep the trees.
 // VPL_VISIBILITY (host define; beyond the thesis, off by default): each accepted node's term times the voxel-march
 // visibility of the segment from the cell's patch to the node's VPL (screen_voxels/vpl_visibility.glsl).
-// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_tau, u_layers, u_rootFirst, u_rootEnd,
+// Host uniforms: u_level, u_levelOrigin, u_rootLevel, u_maxDepth, u_rootsPerLayer, u_layers, u_levelOffset,
+// u_levelSide, u_tau, u_rootFirst, u_rootEnd,
 // vpl_visibility.glsl's (the voxel grid and ray counters when visibility is on).
-// Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), light pyramid geometry/normal/normalMax/flux
-// (BINDING_TEX_INPUT0..3). Outputs: atlas irradiance (alpha 1); counters (BINDING_SSBO_TECH0): visited
+// Inputs: eye pyramid (BINDING_TEX_TECH0, TECH1), the VPL tree (BINDING_TEX_INPUT0, a buffer texture). Outputs: atlas irradiance (alpha 1); counters (BINDING_SSBO_TECH0): visited
 // nodes as a 64-bit sum (low word, carries into the high word: at 1024^2, up to 2^20 fragments x 5376
 // nodes with the defaults, more than 2^32) and the invocations of this shader (one per fragment
 // shaded, summed over the draws).
@@ -29,10 +30,7 @@
 layout(early_fragment_tests) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
-layout(binding = BINDING_TEX_INPUT0) uniform sampler2DArray s_lightGeometry;
-layout(binding = BINDING_TEX_INPUT1) uniform sampler2DArray s_lightNormal;
-layout(binding = BINDING_TEX_INPUT2) uniform sampler2DArray s_lightNormalMax;
-layout(binding = BINDING_TEX_INPUT3) uniform sampler2DArray s_lightFlux;
+layout(binding = BINDING_TEX_INPUT0) uniform samplerBuffer s_tree;  // tree.comp's records, four texels each
 layout(std430, binding = BINDING_SSBO_TECH0) buffer GatherCountBlock {
     uint u_nodesLow;
     uint u_nodesHigh;
@@ -40,22 +38,14 @@ layout(std430, binding = BINDING_SSBO_TECH0) buffer GatherCountBlock {
 };
 uniform int u_rootLevel;
 uniform int u_maxDepth;
-uniform float u_tau;
-uniform int u_layers;
 uniform int u_rootFirst;
 uniform int u_rootEnd;
+uniform int u_rootsPerLayer;  // roots of one layer (a power of four: Morton indices 0 .. u_rootsPerLayer - 1)
+uniform int u_layers;
+uniform int u_levelOffset[16];  // records before level l (tree.comp)
+uniform int u_levelSide[16];    // res_l of Eq. 4.8: level l's side
+uniform float u_tau;
 layout(location = 0) out vec4 o_irradiance;
-
-// An accepted node is one VPL (vpl.glsl patchVpl: on the RSM sample at the node's centre, with the
-// node's summed flux and area), as isr's clusters.
-vec3 nodeIrradiance(ivec3 node, int level, vec3 x, vec3 n, inout uvec2 rays) {
-    vec4 g = texelFetch(s_lightGeometry, node, level);
-    if (g.w <= 0.0) return vec3(0.0);
-    Vpl v = patchVpl(s_lightGeometry, s_lightNormal, node, level, g, texelFetch(s_lightFlux, node, level));
-    vec3 e = vplIrradiance(v, x, n, true, 0.0);
-    if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
-    return e;
-}
 
 void main() {
     ivec3 cell = ivec3(ivec2(gl_FragCoord.xy) - u_levelOrigin, 0);
@@ -65,41 +55,46 @@ void main() {
     vec3 irradiance = vec3(0.0);
     uvec2 rays = uvec2(0u);
     uint visited = 0u;
-    ivec2 roots = textureSize(s_lightGeometry, u_rootLevel).xy;
     int finest = max(u_rootLevel - u_maxDepth, 0);
-    // Stackless depth-first walk of each root's quadtree (RSM sizes are powers of two): descend to the
-    // first child on refinement, otherwise move to the next sibling, climbing while on a last child.
-    int rootEnd = min(u_rootEnd, u_layers * roots.x * roots.y);
+    // Stackless depth-first walk of each root's quadtree in Morton order: descend to the first child
+    // (4m) on refinement, otherwise move to the next sibling (m + 1), climbing (m / 4) while on a last child.
+    int rootEnd = min(u_rootEnd, u_layers * u_rootsPerLayer);
     for (int root = u_rootFirst; root < rootEnd; ++root) {
-        int layer = root / (roots.x * roots.y), rest = root - layer * roots.x * roots.y;
-        int ry = rest / roots.x, rx = rest - ry * roots.x;
-        ivec2 cellXY = ivec2(rx, ry);
+        int layer = root / u_rootsPerLayer;
+        int m = root - layer * u_rootsPerLayer;
         int level = u_rootLevel;
         while (true) {
-            ivec3 node = ivec3(cellXY, layer);
+            // The level's nodes per layer: the roots' count times 4 per level below them.
+            int index = (u_levelOffset[level] + layer * (u_rootsPerLayer << (2 * (u_rootLevel - level))) + m) * 4;
             ++visited;
-            vec4 ng = texelFetch(s_lightGeometry, node, level);
+            vec4 head = texelFetch(s_tree, index);
             bool refine = false;
-            if (ng.w > 0.0 && level > finest) {
-                float res = float(textureSize(s_lightGeometry, level).x);
+            if (head.w >= 0.0 && level > finest) {
+                float res = float(u_levelSide[level]);
                 float t = 2.0 * (1.0 - u_tau) / (3.0 * u_tau * res * res);
-                float lightDistance = texelFetch(s_lightNormalMax, node, level).w;
-                vec3 d = ng.xyz / ng.w - x;
-                refine = dot(d, d) <= t * lightDistance * lightDistance;
+                vec3 d = head.xyz - x;
+                refine = dot(d, d) <= t * head.w * head.w;
             }
             if (refine) {
-                cellXY *= 2;
+                m *= 4;
                 level -= 1;
                 continue;
             }
-            if (ng.w > 0.0) irradiance += nodeIrradiance(node, level, x, n, rays);
-            while (level < u_rootLevel && (cellXY.x & 1) == 1 && (cellXY.y & 1) == 1) {
-                cellXY /= 2;
+            if (head.w >= 0.0) {
+                Vpl v;
+                v.position = texelFetch(s_tree, index + 1);
+                v.normal = texelFetch(s_tree, index + 2);
+                v.flux = texelFetch(s_tree, index + 3);
+                vec3 e = vplIrradiance(v, x, n, true, 0.0);
+                if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);
+                irradiance += e;
+            }
+            while (level < u_rootLevel && (m & 3) == 3) {
+                m >>= 2;
                 level += 1;
             }
             if (level == u_rootLevel) break;
-            if ((cellXY.x & 1) == 0) cellXY.x += 1;
-            else cellXY += ivec2(-1, 1);
+            m += 1;
         }
     }
     // Each adder detects its own wrap of the low word (old + visited >= 2^32), so the pair is exact.

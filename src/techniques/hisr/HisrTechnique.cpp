@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 namespace bounce {
 
@@ -59,6 +60,7 @@ Expected<void> HisrTechnique::setup(const SetupContext&) {
                                              {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                               {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}},
                                              m_visibility->defines()}));
+    BOUNCE_TRY(m_treeBuild, gl::Program::build({"hisr.tree", {{GL_COMPUTE_SHADER, "techniques/hisr/tree.comp"}}}));
     m_gatherCounts = gl::Buffer::create("hisr.gatherCounts", 3 * sizeof(uint32_t));
     return {};
 }
@@ -85,21 +87,26 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         auto s = ctx.timers.scope("vpl-tree");
         // Flags are not used by the traversal; the thresholds only shape the (unused) refine chain.
         m_light->buildLight(*m_rsm, m_rootGrid, nichols::PyramidThresholds{});
+        buildTree();
     }
     m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
     m_visibility->build(ctx);
     {
         auto s = ctx.timers.scope("gather");
-        m_light->geometry().bind(BINDING_TEX_INPUT0);
-        m_light->normal().bind(BINDING_TEX_INPUT1);
-        m_light->normalMax().bind(BINDING_TEX_INPUT2);
-        m_light->flux().bind(BINDING_TEX_INPUT3);
+        m_treeView.bind(BINDING_TEX_INPUT0);
         m_gatherCounts.clearZero();
         m_gatherCounts.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
-        m_gather.set("u_rootLevel", m_light->levels() - 1);
+        const int top = m_light->levels() - 1;
+        m_gather.set("u_rootLevel", top);
         m_gather.set("u_maxDepth", m_maxDepth);
-        m_gather.set("u_tau", m_tau);
         m_gather.set("u_layers", m_light->layers());
+        m_gather.set("u_rootsPerLayer", m_light->levelSize(top).x * m_light->levelSize(top).y);
+        // Eq. 4.8's res_l per level (the shader forms T_l = 2 (1 - tau) / (3 tau res_l^2), I = 1).
+        std::vector<int> sides(kMaxTreeLevels, 1);
+        for (int k = 0; k <= top; ++k) sides[static_cast<size_t>(k)] = m_light->levelSize(k).x;
+        m_gather.set("u_tau", m_tau);
+        glProgramUniform1iv(m_gather.id(), glGetUniformLocation(m_gather.id(), "u_levelOffset"), kMaxTreeLevels, m_treeOffsets.data());
+        glProgramUniform1iv(m_gather.id(), glGetUniformLocation(m_gather.id(), "u_levelSide"), kMaxTreeLevels, sides.data());
         m_visibility->setUniforms(m_gather);
         // Draws of as many roots as fit the shader loop budget (gpu/ShaderLimits.h), so deep trees are
         // walked whole on llvmpipe too.
@@ -117,6 +124,40 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
     }
     m_eye->finish(ctx, indirect, nichols::upsampleFilter(m_upsampling));
     m_gathered = true;
+}
+
+void HisrTechnique::buildTree() {
+    const int levels = m_light->levels();
+    BOUNCE_CHECK(levels <= kMaxTreeLevels, "hisr's VPL tree has at most {} levels", kMaxTreeLevels);
+    m_treeOffsets.assign(kMaxTreeLevels, 0);
+    int records = 0;
+    for (int k = 0; k < levels; ++k) {
+        const glm::ivec2 side = m_light->levelSize(k);
+        // Morton order needs square power-of-two levels: rsmSize is a power of two (setup) and halves.
+        BOUNCE_CHECK(side.x == side.y && (side.x & (side.x - 1)) == 0, "VPL tree level {} is {}x{}", k, side.x, side.y);
+        m_treeOffsets[static_cast<size_t>(k)] = records;
+        records += side.x * side.y * m_light->layers();
+    }
+    const size_t bytes = static_cast<size_t>(records) * kTreeRecordBytes;
+    if (!m_tree || m_tree.size() != bytes) {
+        m_tree = gl::Buffer::create("hisr.tree", bytes);
+        m_treeView = gl::Texture::createBufferView("hisr.treeView", m_tree, GL_RGBA32F);
+    }
+    m_light->geometry().bind(BINDING_TEX_INPUT0);
+    m_light->normal().bind(BINDING_TEX_INPUT1);
+    m_light->normalMax().bind(BINDING_TEX_INPUT2);
+    m_light->flux().bind(BINDING_TEX_INPUT3);
+    m_tree.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+    for (int k = 0; k < levels; ++k) {
+        const int side = m_light->levelSize(k).x;
+        m_treeBuild.set("u_level", k);
+        m_treeBuild.set("u_levelOffset", m_treeOffsets[static_cast<size_t>(k)]);
+        m_treeBuild.set("u_side", side);
+        m_treeBuild.use();
+        glDispatchCompute(static_cast<GLuint>((side + 7) / 8), static_cast<GLuint>((side + 7) / 8),
+                          static_cast<GLuint>(m_light->layers()));
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void HisrTechnique::debugViews(std::vector<DebugView>& out) const {

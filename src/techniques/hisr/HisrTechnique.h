@@ -26,6 +26,10 @@ public:
 private:
     // Loop iterations of one root's walk to `depth` levels, its visibility tests included.
     int rootWalkIterations(int depth) const;
+    // "vpl-tree": the light pyramid re-laid out as Morton-ordered node records (shaders/techniques/hisr/tree.comp).
+    void buildTree();
+    static constexpr int kMaxTreeLevels = 16;  // gather.frag's u_levelOffset[16], u_refineT[16]
+    static constexpr size_t kTreeRecordBytes = 4 * 16;  // four vec4 per node (tree.comp)
 
     int m_rsmSize = 256;       // §4.2.1.2
     int m_rootGrid = 16;       // §4.2.4: 16^2 coarsest light patches
@@ -39,8 +43,11 @@ private:
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::MinMaxPyramid> m_light;
     std::optional<nichols::StencilledGather> m_eye;
-    gl::Program m_gather;
+    gl::Program m_gather, m_treeBuild;
     gl::Buffer m_gatherCounts;
+    gl::Buffer m_tree;        // the VPL tree's records
+    gl::Texture m_treeView;   // m_tree as an RGBA32F buffer texture (the gather's texelFetch)
+    std::vector<int> m_treeOffsets;  // records before each level
     bool m_gathered = false;  // this frame ran the gather (collectCounters has counts to read)
 };
 
