@@ -8,8 +8,10 @@
 // (iterative subsplat refinement: all cells of the coarsest level, then one geometry-shader pass per
 // level that splits refined subsplats into their four children, captured by transform feedback into
 // ping-pong buffers), "splat" (the shared list drawn as GL_POINTS once per VPL into the flattened
-// multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp), "upsample" (coarse-to-fine, §3.2.5,
-// then x albedo/pi).
+// multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp; splatPrimitive=stencil: the list's
+// points mark the atlas stencil and each VPL is one stencilled triangle per level, §4.2.1.1's stencilled
+// splat, the same pairs, VPLs read from uniform-block windows, nichols/VplWindow.h), "upsample"
+// (coarse-to-fine, §3.2.5, then x albedo/pi).
 // Mode A: every subsplat carries its VPL index (w), the initial list holds the coarsest cells once per
 // VPL, and the refine pass also splits a subsplat when the glossy radiance toward the eye from its VPL,
 // evaluated at the four children, varies by more than illuminationContrast times the children's mean
@@ -27,8 +29,7 @@
 // voxel march from the subsplat's patch to the VPL (mode A's refinement still sees unoccluded light).
 //
 // Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5); it scales the glossy part too.
-// Not implemented (see docs/techniques/multires-splat.md): the point/quad switch, the linear-depth
-// min-max variant, the nearest/naive-bilinear upsampling modes of Fig. 3.5.
+// Not implemented (see docs/techniques/multires-splat.md): the linear-depth min-max variant.
 // Deviations (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
 // alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007); the glossy
 // material is read from the G-buffer at each cell's central pixel; T is relative (the thesis's is an
