@@ -89,6 +89,31 @@ TEST_F(HisrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
 // BOUNCE_SHADER_DIR at an edited copy) and both configurations fail (measured on llvmpipe: 5376
 // invocations for 2257 stencilled fragments at 64^2, 3840 for 3 draws x 890 at 32^2: the whole
 // rectangles).
+// gatherPass=compute lists the cells the stencil would mark and gathers them in a compute dispatch:
+// the same cells, the same walks, so the same image and counts (float rounding only: the same sums in
+// the same order per cell). With vplVisibility and deep trees the walk is split over several dispatches,
+// which accumulate into the atlas (u_accumulate).
+TEST_F(HisrGpuTest, ComputeGatherEqualsTheStencilledGather) {
+    for (const char* sceneName : {"cornell-box", "cornell-box-dynamic"}) {
+        auto scene = loadScene(sceneName);
+        ASSERT_TRUE(scene.ok());
+        for (const char* visibility : {"false", "true"}) {
+            SCOPED_TRACE(std::string(sceneName) + ", visibility " + visibility);
+            std::map<std::string, std::string> settings = {{"vplVisibility", visibility}, {"gatherPass", "stencil"}};
+            auto stencil = makePipeline(*scene, "hisr", settings, 48);
+            settings["gatherPass"] = "compute";
+            auto compute = makePipeline(*scene, "hisr", settings, 48);
+            const Counters a = stencil->renderFrame(1).counters, b = compute->renderFrame(1).counters;
+            const Image x = stencil->readback(Component::Indirect), y = compute->readback(Component::Indirect);
+            ASSERT_GT(totalRadiance(x), 0.0);
+            EXPECT_LT(relativeRmsError(y, x), 1e-6);
+            EXPECT_EQ(b.at("gatherFragments"), a.at("gatherFragments"));
+            EXPECT_EQ(b.at("nodesPerFragment"), a.at("nodesPerFragment"));
+            EXPECT_EQ(b.at("gatherDraws"), a.at("gatherDraws"));
+        }
+    }
+}
+
 TEST_F(HisrGpuTest, StencilCullsTheGather) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());
@@ -98,13 +123,16 @@ TEST_F(HisrGpuTest, StencilCullsTheGather) {
     };
     // One draw (defaults' shape, 3 eye levels), and 64^2 roots at depth 2: 4096 roots in draws of 1524
     // (the loop budget, HisrTechnique.cpp), so the count is summed over several draws.
+    // gatherPass=compute: the same count, from invocations past the cell list's end returning first.
+    for (const char* pass : {"stencil", "compute"})
     for (const Case& c : {Case{64, 64, 16, 2, 1.0}, Case{32, 256, 64, 2, 3.0}}) {
-        SCOPED_TRACE("size " + std::to_string(c.size) + ", rootGrid " + std::to_string(c.rootGrid));
+        SCOPED_TRACE(std::string(pass) + ", size " + std::to_string(c.size) + ", rootGrid " + std::to_string(c.rootGrid));
         auto p = makePipeline(*scene, "hisr",
                               {{"rsmSize", std::to_string(c.rsmSize)},
                                {"rootGrid", std::to_string(c.rootGrid)},
                                {"maxDepth", std::to_string(c.maxDepth)},
-                               {"eyeCoarsest", "16"}},
+                               {"eyeCoarsest", "16"},
+                               {"gatherPass", pass}},
                               c.size);
         const Counters counters = p->renderFrame(0).counters;
         const double fragments = counters.at("gatherFragments"), draws = counters.at("gatherDraws");

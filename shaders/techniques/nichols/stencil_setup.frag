@@ -6,15 +6,11 @@
 // Host uniforms: u_level, u_levelOrigin, u_coarsest (index of the coarsest level).
 // Inputs: eye pyramid geometry and refine (BINDING_TEX_TECH0, TECH1). Output: stencil only.
 #include "techniques/nichols/atlas.glsl"
+#include "techniques/nichols/stencil_rule.glsl"
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_refine;
 uniform int u_coarsest;
 
 void main() {
-    ivec2 cell = ivec2(gl_FragCoord.xy) - u_levelOrigin;
-    bool covered = texelFetch(s_geometry, ivec3(cell, 0), u_level).w > 0.0;
-    bool ownRefine = u_level > 0 && texelFetch(s_refine, ivec3(cell, 0), u_level).r > 0.5;
-    ivec2 parentSize = textureSize(s_refine, min(u_level + 1, u_coarsest)).xy;
-    bool parentRefine = u_level == u_coarsest || texelFetch(s_refine, ivec3(min(cell / 2, parentSize - 1), 0), u_level + 1).r > 0.5;
-    if (!covered || ownRefine || !parentRefine) discard;
+    if (!gathersHere(s_geometry, s_refine, ivec2(gl_FragCoord.xy) - u_levelOrigin, u_level, u_coarsest)) discard;
 }

@@ -34,6 +34,7 @@ void HisrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("tau", m_tau, "Eq. 4.8 refinement threshold on the normalised contribution bound (assumption)", 1e-6f, 0.999f);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
+    v.field("gatherPass", m_gatherPass, nichols::kGatherPassHelp, nichols::kGatherPasses);
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2)");
@@ -56,10 +57,16 @@ Expected<void> HisrTechnique::setup(const SetupContext&) {
                          "lower maxDepth{}",
                          m_maxDepth, m_visibility->enabled() ? " with vplVisibility" : "", walk,
                          gl::kShaderLoopIterationBudget, m_visibility->enabled() ? ", voxelColumns or voxelBits" : "");
-    BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather",
-                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                              {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}},
-                                             m_visibility->defines()}));
+    // gatherPass: the stencilled draw (the thesis's) or the compute dispatch over the cell list (same sums).
+    if (nichols::gatherPass(m_gatherPass) == nichols::GatherPass::Compute) {
+        BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather", {{GL_COMPUTE_SHADER, "techniques/hisr/gather.comp"}}, m_visibility->defines()}));
+    } else {
+        BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather",
+                                                 {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                  {GL_FRAGMENT_SHADER, "techniques/hisr/gather.frag"}},
+                                                 m_visibility->defines()}));
+    }
+
     BOUNCE_TRY(m_treeBuild, gl::Program::build({"hisr.tree", {{GL_COMPUTE_SHADER, "techniques/hisr/tree.comp"}}}));
     m_gatherCounts = gl::Buffer::create("hisr.gatherCounts", 3 * sizeof(uint32_t));
     return {};
@@ -89,7 +96,7 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_light->buildLight(*m_rsm, m_rootGrid, nichols::PyramidThresholds{});
         buildTree();
     }
-    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
+    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds, nichols::gatherPass(m_gatherPass));
     m_visibility->build(ctx);
     {
         auto s = ctx.timers.scope("gather");

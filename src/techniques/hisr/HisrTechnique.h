@@ -37,6 +37,7 @@ private:
     float m_tau = 0.01f;       // Eq. 4.8 threshold on the normalised bound (assumption; thesis gives none)
     int m_eyeCoarsest = 16;
     std::string m_upsampling = "empty-aware";  // nichols::UpsampleFilter (§3.2.5; the others for comparison)
+    std::string m_gatherPass = "compute";      // nichols::GatherPass (bounce default; "stencil" is the thesis's)
     nichols::PyramidThresholds m_eyeThresholds{0.1f, 0.3f, false};
     voxels::VplVisibilitySettings m_visibilitySettings;  // beyond the thesis; off by default
     std::optional<voxels::VplVisibility> m_visibility;

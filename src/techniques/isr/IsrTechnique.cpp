@@ -49,6 +49,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("lightFinest", m_lightFinest, "clusters: finest light-space patch grid (assumption 64; up to rsmSize)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
+    v.field("gatherPass", m_gatherPass, nichols::kGatherPassHelp, nichols::kGatherPasses);
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: not adopted, up to 40 % slower)");
@@ -66,10 +67,16 @@ Expected<void> IsrTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_eye, nichols::StencilledGather::create());
     BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
-    BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather",
-                                             {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                              {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}},
-                                             nichols::VplWindow::withDefines(m_visibility->defines())}));
+    // gatherPass: the stencilled draw (the thesis's) or the compute dispatch over the cell list (same sums).
+    if (nichols::gatherPass(m_gatherPass) == nichols::GatherPass::Compute) {
+        BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather", {{GL_COMPUTE_SHADER, "techniques/isr/gather.comp"}}, nichols::VplWindow::withDefines(m_visibility->defines())}));
+    } else {
+        BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather",
+                                                 {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                  {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}},
+                                                 nichols::VplWindow::withDefines(m_visibility->defines())}));
+    }
+
     BOUNCE_TRY(m_clusters, gl::Program::build({"isr.clusters", {{GL_COMPUTE_SHADER, "techniques/isr/clusters.comp"}}}));
     m_count = gl::Buffer::create("isr.vplCount", sizeof(uint32_t));
     return {};
@@ -122,7 +129,7 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             vpls = &m_clusterVpls;
         }
     }
-    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds);
+    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds, nichols::gatherPass(m_gatherPass));
     m_visibility->build(ctx);
     {
         auto s = ctx.timers.scope("gather");

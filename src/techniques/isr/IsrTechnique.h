@@ -40,6 +40,7 @@ private:
     int m_lightFinest = 64;         // finest cluster level (assumption; "as fine as the RSM" is allowed)
     int m_eyeCoarsest = 16;         // §3.2.4: illumination buffer from 16^2
     std::string m_upsampling = "empty-aware";  // nichols::UpsampleFilter (§3.2.5; the others for comparison)
+    std::string m_gatherPass = "compute";      // nichols::GatherPass (bounce default; "stencil" is the thesis's)
     nichols::PyramidThresholds m_eyeThresholds{0.1f, 0.3f, false};    // assumptions (thesis gives none)
     nichols::PyramidThresholds m_lightThresholds{0.1f, 0.3f, false};  // assumptions
     voxels::VplVisibilitySettings m_visibilitySettings;  // beyond the thesis; off by default

@@ -11,17 +11,33 @@
 
 namespace bounce::nichols {
 
+// How the gathering cells are found and shaded (setting `gatherPass` of isr and hisr): Stencil is the
+// thesis's (§4.2.1.1: mark the cells in the stencil, draw each level's rectangle with early stencil
+// culling); Compute lists the same cells (cell_list.comp) and gathers them in a compute dispatch over
+// the list (cell_gather.glsl): same cells, same sums, no SIMD lanes lost to the stencil's sparse 4x4
+// blocks on a CPU rasteriser.
+enum class GatherPass { Stencil = 0, Compute = 1 };
+inline constexpr std::string_view kGatherPasses[] = {"stencil", "compute"};
+inline constexpr const char* kGatherPassHelp =
+    "stencil: the thesis's stencil set-up and stencilled draws (§4.2.1.1); compute: the same cells listed and "
+    "gathered by a compute dispatch over the list (faster on llvmpipe, same image)";
+GatherPass gatherPass(std::string_view name);
+
 class StencilledGather {
 public:
     static Expected<StencilledGather> create();
 
     // Timers "min-max-mipmap" and "stencil-setup": builds the eye pyramid down to eyeCoarsest and
     // marks each covered pixel at exactly one level of the buffer.
-    void prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds);
+    // With GatherPass::Compute, "stencil-setup" builds the cell list instead of the stencil.
+    void prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds,
+                 GatherPass pass = GatherPass::Stencil);
     // Draws `program` over the stencilled cells of every level, with the eye pyramid's geometry and
     // normal bound at BINDING_TEX_TECH0/1 (the patch each cell gathers for). The caller opens the
     // "gather" timer and binds its light data first. With batches > 1, as
     // MultiresBuffer::drawStencilled: setBatch(b) sets batch b's uniforms.
+    // With GatherPass::Compute, `program` is the technique's compute gather (cell_gather.glsl's main), one
+    // indirect dispatch per batch.
     void gather(gl::Program& program, int batches = 1, const std::function<void(int)>& setBatch = {});
     // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance.
     void finish(FrameContext& ctx, const gl::Texture& indirect, UpsampleFilter filter = UpsampleFilter::EmptyAware);
@@ -38,6 +54,10 @@ private:
     std::optional<MinMaxPyramid> m_eye;
     std::optional<MultiresBuffer> m_buffer;
     gl::Framebuffer m_clearFbo;
+    gl::Program m_cellList, m_cellArgs;  // GatherPass::Compute: the list and its dispatch size
+    gl::Buffer m_cells, m_dispatch;
+    GatherPass m_pass = GatherPass::Stencil;
+    int m_levels = 0;  // levels of the last prepare()
     std::vector<int> m_tickets;  // the last gather's fragment counts per level (MultiresBuffer::fragments)
 };
 
