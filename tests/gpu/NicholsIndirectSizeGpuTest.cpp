@@ -141,13 +141,14 @@ TEST_F(NicholsIndirectSizeGpuTest, HalfResolutionStaysCloseOnASmoothScene) {
         ASSERT_GT(totalRadiance(full.indirect), 0.0) << "the wall receives the floor's bounce";
         // Bound: the half-size buffer point-samples the G-buffer once per 2x2 block, so its patches at the
         // crease and the image border shift by up to a pixel and its bilinear upsampling blurs the crease
-        // by a block; on this smooth scene that is a few percent (measured 3.5 % for isr and hisr, see
-        // the technique pages' indirectSize notes); 6 % leaves room for llvmpipe versions.
+        // by a block: measured 3.5 % (isr, hisr) and 3.9 % (multires-splat). 4.5 % is just above them and
+        // below what nearest (blocky) upsampling gives (4.8-5.7 %, tried as a mutation of
+        // output_upsample.glsl), so the bound also checks the filter.
         const double relRms = relativeRmsError(half.indirect, full.indirect);
         const double ratio = totalRadiance(half.indirect) / totalRadiance(full.indirect);
         RecordProperty(technique + "_relRms", std::to_string(relRms));
         RecordProperty(technique + "_totalRatio", std::to_string(ratio));
-        EXPECT_LT(relRms, 0.06);
+        EXPECT_LT(relRms, 0.045);
         EXPECT_NEAR(ratio, 1.0, 0.02);  // the same light, redistributed by at most a block
     }
 }
@@ -172,8 +173,9 @@ TEST_F(NicholsIndirectSizeGpuTest, HalfResolutionDoesLessWork) {
         // Bound: the edges' cells fall with the side (x 1/2), the finest level's with the area (x 1/4);
         // measured about 0.4.
         EXPECT_LT(halfWork, 0.5 * fullWork) << work;
-        // The image stays close (measured 7-8 %: the box's edges are a larger share than the smooth scene's).
-        EXPECT_LT(relRms, 0.12);
+        // The image stays close: measured 5.3-8.2 % (the box's edges and blocks are a larger share of the
+        // image than the smooth scene's crease); 11 % catches gross errors, not the filter's detail.
+        EXPECT_LT(relRms, 0.11);
     }
 }
 
