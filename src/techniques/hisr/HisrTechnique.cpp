@@ -36,10 +36,7 @@ void HisrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2)");
-    v.field("linearDepth", m_eyeThresholds.linearDepth,
-            "§3.2.2.1: eye-space depth test on a linear-depth min-max mipmap, (max - min) / min > depthThreshold, instead "
-            "of the depth-derivative max-mipmap (off: the derivative, chs. 3-5's choice)");
-    v.field("indirectSize", m_indirectSize, nichols::kIndirectSizeHelp, 0, 8192);
+    nichols::visitEyeSettings(v, m_eyeThresholds, m_indirectSize);
     m_visibilitySettings.visit(v);
 }
 

@@ -98,10 +98,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("curvatureThreshold", m_curvatureThreshold,
             "max curvature kappa = 2 sin(angle / 2) between neighbouring pixels, 0..2 (Fig. 3.10: 0.1, 0.3)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
-    v.field("linearDepth", m_thresholds.linearDepth,
-            "§3.2.2.1: eye-space depth test on a linear-depth min-max mipmap, (max - min) / min > depthThreshold, instead "
-            "of the depth-derivative max-mipmap (off: the derivative, chs. 3-5's choice)");
-    v.field("indirectSize", m_indirectSize, nichols::kIndirectSizeHelp, 0, 8192);
+    nichols::visitEyeSettings(v, m_thresholds, m_indirectSize);
     m_visibilitySettings.visit(v);
 }
 

@@ -17,6 +17,13 @@ void dispatch2D(glm::ivec2 size, int layers) {
 }
 }  // namespace
 
+void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSize) {
+    v.field("linearDepth", t.linearDepth,
+            "§3.2.2.1: eye-space depth test on a linear-depth min-max mipmap, (max - min) / min > depthThreshold, instead "
+            "of the depth-derivative max-mipmap (off: the derivative, chs. 3-5's choice)");
+    v.field("indirectSize", indirectSize, kIndirectSizeHelp, 0, 8192);
+}
+
 Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output) {
     if (indirectSize == 0) return {};
     const int larger = std::max(output.x, output.y);

@@ -31,6 +31,9 @@ inline constexpr const char* kIndirectSizeHelp =
     "indirect-light resolution cap (thesis ch. 3: 128..1024 in a 1024^2 window): 0 = output size; else a power of "
     "two <= the output's larger side; the output is divided by the smallest power of two that fits, the result "
     "upsampled to the output by empty-aware bilinear interpolation";
+// Declares the settings `linearDepth` (t.linearDepth) and `indirectSize` of an eye pyramid's technique
+// (multires-splat, isr, hisr): one declaration, one help text.
+void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSize);
 // One-line error unless indirectSize is 0 or a power of two no larger than output's larger side.
 Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output);
 // The power-of-two divisor s of the output for indirectSize (1 for 0 or a cap the output already fits).
