@@ -9,6 +9,7 @@
 #define BINDING_UBO_LIGHT 2    // LightUniforms: one light for a shading or shadow pass
 #define BINDING_UBO_PASS 3     // per-pass parameters owned by a technique
 #define BINDING_UBO_VOXELS 4   // ScreenVoxelsGpu: the screen-space voxel grid (techniques/screen_voxels)
+#define BINDING_UBO_VPL_WINDOW 5  // a window of a VPL cache read as a uniform block (techniques/nichols/vpl_window.glsl)
 
 // Shader storage buffers
 #define BINDING_SSBO_OBJECTS 0    // ObjectGpu[]: worldFromObject, normal matrix, material index

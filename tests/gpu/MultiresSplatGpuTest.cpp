@@ -59,6 +59,41 @@ TEST_F(MultiresSplatGpuTest, QuadSplatsEqualPointSplats) {
     EXPECT_LT(relativeRmsError(quads, points), 1e-6);
 }
 
+// splatPrimitive=stencil (§4.2.1.1's stencilled splat): the list marks the stencil, each VPL splats one
+// stencilled triangle per level. Same pairs, same order per texel (VPLs by instance), so the same image;
+// 4096 VPLs span four uniform-block windows (nichols/VplWindow.h), so a window offset error shows.
+TEST_F(MultiresSplatGpuTest, StencilSplatsEqualPointSplats) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 48;
+    for (const char* visibility : {"false", "true"}) {
+        SCOPED_TRACE(visibility);
+        const std::map<std::string, std::string> base = {{"rsmSize", "64"}, {"vplGrid", "64"}, {"vplVisibility", visibility}};
+        auto stencilSettings = base;
+        stencilSettings["splatPrimitive"] = "stencil";
+        auto points = makePipeline(*scene, "multires-splat", base, kSize);
+        auto stencil = makePipeline(*scene, "multires-splat", stencilSettings, kSize);
+        const FrameStats p = points->renderFrame(0), s = stencil->renderFrame(0);
+        const Image a = points->readback(Component::Indirect), b = stencil->readback(Component::Indirect);
+        EXPECT_GT(totalRadiance(a), 0.0);
+        // Float rounding only (the blend order per texel is the VPL order in both).
+        EXPECT_LT(relativeRmsError(b, a), 1e-6);
+        EXPECT_EQ(s.counters.at("subsplats"), p.counters.at("subsplats"));
+        EXPECT_EQ(s.counters.at("splats"), p.counters.at("splats"));
+    }
+}
+
+TEST_F(MultiresSplatGpuTest, StencilSplatsNeedTheSharedList) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    auto t = createTechnique("multires-splat");
+    ASSERT_TRUE(t.ok());
+    ASSERT_TRUE(applySettings(**t, {{"splatPrimitive", "stencil"}, {"refinement", "per-vpl"}}, "multires-splat").ok());
+    auto p = Pipeline::create(*scene, std::move(*t), {32, 32}, smallRenderSettings());
+    ASSERT_FALSE(p.ok());
+    EXPECT_NE(p.error().message.find("splatPrimitive=stencil"), std::string::npos) << p.error().message;
+}
+
 TEST_F(MultiresSplatGpuTest, DetailModulationScalesBetweenOneMinusAlphaAndOne) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());

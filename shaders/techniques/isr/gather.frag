@@ -10,11 +10,13 @@
 // no invocation loops past the shader loop budget (gpu/ShaderLimits.h).
 // VPL_VISIBILITY (host define; beyond the thesis, off by default): each VPL's term times the voxel-march visibility
 // of the segment from the cell's patch to the VPL (screen_voxels/vpl_visibility.glsl).
-// Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd, vpl_visibility.glsl's. Inputs: eye pyramid
-// (BINDING_TEX_TECH0, TECH1), Vpl[] and the VPL count (BINDING_SSBO_TECH0, TECH1), the voxel grid when
+// Host uniforms: u_level, u_levelOrigin, u_vplFirst, u_vplEnd, u_windowFirst, vpl_visibility.glsl's. Inputs: eye pyramid
+// (BINDING_TEX_TECH0, TECH1), the window of VPLs from u_windowFirst (vpl_window.glsl)
+// and the VPL count (BINDING_SSBO_TECH1), the voxel grid when
 // visibility is on. Output: atlas RGBA32F; ray counters.
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/nichols/vpl.glsl"
+#include "techniques/nichols/vpl_window.glsl"
 #include "techniques/screen_voxels/vpl_visibility.glsl"
 // Only the stencilled cells of the level rectangle may run the loop. This shader has no side effects,
 // so GL already allows the stencil test before it (llvmpipe does it: same frame time with and without
@@ -23,9 +25,9 @@
 layout(early_fragment_tests) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_normal;
-layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
 layout(std430, binding = BINDING_SSBO_TECH1) readonly buffer VplCountBlock { uint u_vplCount; };
 uniform uint u_vplFirst;
+uniform uint u_windowFirst;  // the record u_vplWindow[0] holds
 uniform uint u_vplEnd;
 layout(location = 0) out vec4 o_irradiance;
 
@@ -38,7 +40,7 @@ void main() {
     uvec2 rays = uvec2(0u);
     uint end = min(u_vplEnd, u_vplCount);
     for (uint j = u_vplFirst; j < end; ++j) {
-        Vpl v = u_vpls[j];
+        Vpl v = u_vplWindow[j - u_windowFirst];
         if (v.position.w < 0.5) continue;
         vec3 e = vplIrradiance(v, x, n, true, 0.0);
         if (kVplVisibility && any(greaterThan(e, vec3(0.0)))) e *= vplVisible(x, n, v.position.xyz, v.normal.xyz, rays);

@@ -22,18 +22,24 @@ struct Patch {
     Surface material;  // central pixel; material.covered is false if that pixel is uncovered
 };
 
-Patch subsplatPatch(int level, ivec2 cell) {
-    int side = (1 << level) * u_gbufferScale;
-    ivec2 pixel = min(cell * side + side / 2, ivec2(u_frame.viewport.xy) - 1);
+// The patch's position and normal only (mode B's splats, which need no material).
+Patch subsplatGeometry(int level, ivec2 cell) {
     vec4 g = texelFetch(s_geometry, ivec3(cell, 0), level);
     Patch p;
     p.position = g.xyz / max(g.w, 1.0);
     p.normal = normalize(texelFetch(s_normal, ivec3(cell, 0), level).xyz + vec3(0.0, 0.0, 1e-12));
+    p.material.covered = false;
+    return p;
+}
+
+Patch subsplatPatch(int level, ivec2 cell) {
+    int side = (1 << level) * u_gbufferScale;
+    ivec2 pixel = min(cell * side + side / 2, ivec2(u_frame.viewport.xy) - 1);
+    Patch p = subsplatGeometry(level, cell);
     p.material = readSurface(pixel);
     return p;
 }
 
-// Irradiance at the patch from VPL v, Eq. 3.2 (point form factor, r^2 clamp), W/m^2.
 vec3 patchIrradiance(Patch p, Vpl v) {
     return v.position.w > 0.5 ? vplIrradiance(v, p.position, p.normal, false, u_minDistance2) : vec3(0.0);
 }

@@ -8,12 +8,13 @@
 #include "techniques/nichols/vpl.glsl"
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
 uniform float u_radius;
+uniform int u_vplFirst;  // instance i splats VPL u_vplFirst + i (one VPL window per draw)
 flat out int v_vpl;
 
 void main() {
     const vec2 corners[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
-    v_vpl = gl_InstanceID;
-    Vpl v = u_vpls[gl_InstanceID];
+    v_vpl = u_vplFirst + gl_InstanceID;
+    Vpl v = u_vpls[v_vpl];
     vec2 lo = vec2(-1.0), hi = vec2(1.0);
     if (v.position.w < 0.5) {
         lo = hi = vec2(2.0);  // degenerate quad outside the viewport: nothing to splat

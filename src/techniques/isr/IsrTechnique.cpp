@@ -26,6 +26,7 @@
 #include "techniques/isr/IsrTechnique.h"
 
 #include "core/Check.h"
+#include "techniques/nichols/VplWindow.h"
 #include "gpu/Bindings.h"
 #include "gpu/ShaderLimits.h"
 
@@ -70,7 +71,7 @@ Expected<void> IsrTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY(m_gather, gl::Program::build({"isr.gather",
                                              {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                               {GL_FRAGMENT_SHADER, "techniques/isr/gather.frag"}},
-                                             m_visibility->defines()}));
+                                             nichols::VplWindow::withDefines(m_visibility->defines())}));
     BOUNCE_TRY(m_clusters, gl::Program::build({"isr.clusters", {{GL_COMPUTE_SHADER, "techniques/isr/clusters.comp"}}}));
     m_count = gl::Buffer::create("isr.vplCount", sizeof(uint32_t));
     return {};
@@ -127,16 +128,17 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     m_visibility->build(ctx);
     {
         auto s = ctx.timers.scope("gather");
-        vpls->bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
         m_visibility->setUniforms(m_gather);
         // One loop iteration per VPL, plus its visibility test when on: draws of at most half the shader
         // loop budget (gpu/ShaderLimits.h), so a million-VPL cache is gathered whole on llvmpipe too.
+        // The VPLs are read through a uniform-block window (nichols/VplWindow.h), at most one window a draw.
         const int vplsPerDraw =
-            std::max(1, gl::kShaderLoopIterationBudget / 2 / (1 + m_visibility->loopIterationsPerTest()));
+            nichols::VplWindow::perDraw(gl::kShaderLoopIterationBudget / 2 / (1 + m_visibility->loopIterationsPerTest()));
         const int batches = std::max(1, (vplBound + vplsPerDraw - 1) / vplsPerDraw);
         m_eye->gather(m_gather, batches, [&](int b) {
             m_gather.set("u_vplFirst", static_cast<unsigned>(b * vplsPerDraw));
+            m_gather.set("u_windowFirst", static_cast<unsigned>(nichols::VplWindow::bind(*vpls, b * vplsPerDraw, vplsPerDraw)));
             m_gather.set("u_vplEnd", static_cast<unsigned>((b + 1) * vplsPerDraw));
         });
         ctx.counters["gatherDraws"] = static_cast<double>(batches);

@@ -46,6 +46,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "techniques/nichols/VplWindow.h"
 
 #include <fmt/format.h>
 
@@ -72,9 +73,11 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
-    static constexpr std::string_view kPrimitives[] = {"points", "quads"};
+    static constexpr std::string_view kPrimitives[] = {"points", "quads", "stencil"};
     v.field("splatPrimitive", m_splatPrimitive,
-            "subsplats drawn as points (thesis) or as one-texel quads through a geometry shader (§3.4.1's comparison; same image)",
+            "subsplats drawn as points (thesis), as one-texel quads through a geometry shader (§3.4.1's comparison), or "
+            "stencil: the list marks the atlas stencil once and each VPL splats one stencilled full-level triangle per level "
+            "(§4.2.1.1's stencilled splat; refinement=shared only); same image",
             kPrimitives);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2, metres (assumption)", 0.0f, 10.0f);
@@ -105,6 +108,9 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
 Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+    if (m_splatPrimitive == "stencil" && m_refinement != "shared")
+        return makeError("splatPrimitive=stencil splats one shared list (refinement=shared); refinement={} has one list per VPL",
+                         m_refinement);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_eye, nichols::MinMaxPyramid::create());
@@ -133,6 +139,16 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
             splat.defines.emplace_back("SPLAT_QUADS", "1");
         }
         BOUNCE_TRY(m_splat, gl::Program::build(splat));
+    }
+    if (m_splatPrimitive == "stencil") {
+        BOUNCE_TRY(m_mark, gl::Program::build({"multiresSplat.mark",
+                                               {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
+                                                {GL_FRAGMENT_SHADER, "techniques/multires_splat/mark.frag"}},
+                                               m_visibility->defines()}));
+        BOUNCE_TRY(m_splatStencil, gl::Program::build({"multiresSplat.splatStencil",
+                                                       {{GL_VERTEX_SHADER, "techniques/multires_splat/splat_stencil.vert"},
+                                                        {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat_stencil.frag"}},
+                                                       nichols::VplWindow::withDefines(m_visibility->defines())}));
     }
     m_feedback[0] = gl::TransformFeedback::create("multiresSplat.feedback0");
     m_feedback[1] = gl::TransformFeedback::create("multiresSplat.feedback1");
@@ -250,24 +266,48 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             glBlendFunc(GL_ONE, GL_ONE);
             std::vector<glm::ivec2> origins(kMaxLevels, glm::ivec2(0));
             for (int k = 0; k < levels; ++k) origins[static_cast<size_t>(k)] = m_buffer->levelOrigin(k);
-            glProgramUniform2iv(m_splat.id(), glGetUniformLocation(m_splat.id(), "u_origins"), kMaxLevels,
-                                &origins[0].x);
-            m_splat.set("u_atlasSize", m_buffer->atlasSize());
-            m_splat.set("u_minDistance2", m_minDistance * m_minDistance);
-            m_splat.set("u_gbufferScale", m_eye->scale());
-            m_splat.set("u_perVpl", perVpl ? 1 : 0);
-            m_splat.set("u_glossy", glossy ? 1 : 0);
+            // splatPrimitive=stencil: the list's points only mark the stencil (splat.vert, one instance, so
+            // its per-level subsplat counts are the list's); the VPLs are splatted below.
+            gl::Program& points = m_splatPrimitive == "stencil" ? m_mark : m_splat;
+            glProgramUniform2iv(points.id(), glGetUniformLocation(points.id(), "u_origins"), kMaxLevels, &origins[0].x);
+            points.set("u_atlasSize", m_buffer->atlasSize());
+            points.set("u_minDistance2", m_minDistance * m_minDistance);
+            points.set("u_gbufferScale", m_eye->scale());
+            points.set("u_perVpl", perVpl ? 1 : 0);
+            if (m_splatPrimitive != "stencil") points.set("u_glossy", glossy ? 1 : 0);
             // One fragment is one subsplat-VPL pair: a single visibility test per invocation, far within
             // the shader loop budget, so the splat draw needs no batching for it.
-            m_visibility->setUniforms(m_splat);
+            m_visibility->setUniforms(points);
             m_eye->geometry().bind(BINDING_TEX_TECH0);
             m_eye->normal().bind(BINDING_TEX_TECH2);
             ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_levelCounts.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
-            m_splat.use();
+            points.use();
             m_vaos[current].bind();
-            glDrawTransformFeedbackInstanced(GL_POINTS, m_feedback[current].id(), perVpl ? 1 : vplCount);
+            if (m_splatPrimitive == "stencil") {
+                glDisable(GL_BLEND);
+                glEnable(GL_STENCIL_TEST);
+                glStencilFunc(GL_ALWAYS, 1, 0xFF);
+                glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+                glStencilMask(0xFF);
+                glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+                glDrawTransformFeedback(GL_POINTS, m_feedback[current].id());
+                glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+                glDisable(GL_STENCIL_TEST);
+                m_splatStencil.set("u_minDistance2", m_minDistance * m_minDistance);
+                m_visibility->setUniforms(m_splatStencil);
+                // One window of VPLs per instanced draw (nichols/VplWindow.h), one draw per level.
+                const int perDraw = nichols::VplWindow::perDraw(vplCount);
+                for (int v = 0; v < vplCount; v += perDraw) {
+                    const int count = std::min(perDraw, vplCount - v);
+                    m_splatStencil.set("u_windowFirst", static_cast<unsigned>(nichols::VplWindow::bind(m_vpls->buffer(), v, count)));
+                    m_splatStencil.set("u_vplFirst", static_cast<unsigned>(v));
+                    for (int k = 0; k < levels; ++k) m_buffer->splatLevel(k, m_splatStencil, 1, count);
+                }
+            } else {
+                glDrawTransformFeedbackInstanced(GL_POINTS, m_feedback[current].id(), perVpl ? 1 : vplCount);
+            }
             glDisable(GL_BLEND);
         }
     }

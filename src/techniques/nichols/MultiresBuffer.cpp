@@ -170,6 +170,26 @@ int MultiresBuffer::drawLevel(int level, gl::Program& program, int ref, int batc
     return ticket;
 }
 
+void MultiresBuffer::splatLevel(int level, gl::Program& program, int ref, int instances) {
+    m_atlasFbo.bind();
+    glDisable(GL_DEPTH_TEST);
+    gl::Context::current()->bindEmptyVertexArray();
+    const glm::ivec2 o = levelOrigin(level), s = levelSize(level);
+    glViewport(o.x, o.y, s.x, s.y);
+    program.set("u_level", level);
+    program.set("u_levelOrigin", o);
+    program.use();
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, ref, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ZERO);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 3, instances);
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+}
+
 double MultiresBuffer::fragments(int ticket) const {
     BOUNCE_CHECK(ticket >= 0 && ticket < m_queriesUsed, "fragment-count ticket {} of {} this frame", ticket, m_queriesUsed);
     GLuint64 samples = 0;

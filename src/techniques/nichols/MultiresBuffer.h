@@ -58,6 +58,11 @@ public:
     // stencil (counted once, over the first batch).
     int drawLevel(int level, gl::Program& program, int ref, int batches = 1,
                   const std::function<void(int)>& setBatch = {});
+    // Splats `instances` instances of `program` (full-screen triangle, instance = the caller's VPL) over
+    // level k where the stencil equals `ref`, added by blending (RGB summed, alpha the program's): the
+    // stencilled splat of Nichols 2010 §4.2.1.1 (multires-splat splatPrimitive=stencil). No fragment count
+    // (the caller knows its subsplats).
+    void splatLevel(int level, gl::Program& program, int ref, int instances);
     // The fragments counted under a ticket of this frame (since begin()). Waits for the GPU: call it
     // after the frame's work is queued (Technique::collectCounters), not on the frame's path.
     double fragments(int ticket) const;

@@ -8,8 +8,8 @@
 // one draw per batch, added by blending: the sum is linear in the VPLs, so the batched image is the
 // one-pass image up to float rounding, and the million-VPL limit (rsmSize = vplGrid = 1024) is 16 draws
 // of bounded length instead of one draw of minutes on llvmpipe (on a desktop GPU a long draw trips the
-// driver's watchdog). The gather reads the VPL cache as textures in row/column loops (RegularVpls):
-// on llvmpipe that is about twice as fast as indexing the SSBO (docs/techniques/rsm.md).
+// driver's watchdog). The gather reads the VPL cache through uniform-block windows (nichols/VplWindow.h):
+// on llvmpipe several times faster than indexing the SSBO or walking the VPL textures (docs/techniques/rsm.md).
 // With `glossy` on (bounce's extension, off by default), the GGX lobe of the receiver's BRDF toward
 // the eye is added per VPL: the limit of multires-splat's mode A.
 // With `vplVisibility` on (beyond the thesis, off by default; techniques/screen_voxels/VplVisibility.h) a
@@ -27,6 +27,7 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 #include "gpu/ShaderLimits.h"
+#include "techniques/nichols/VplWindow.h"
 
 #include <algorithm>
 
@@ -41,7 +42,7 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
             "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
     m_visibilitySettings.visit(v);
-    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, rounded down to whole VPL-grid rows (at least one) and capped by the shader loop budget (65535 loop iterations per invocation on llvmpipe); batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
+    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, capped by one uniform-block window of the cache (1024 VPLs) and the shader loop budget (65535 loop iterations per invocation on llvmpipe), rounded down to a multiple of 16; batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
 }
 
 Expected<void> RsmTechnique::setup(const SetupContext&) {
@@ -49,16 +50,15 @@ Expected<void> RsmTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
-    // A draw sums whole VPL-grid rows; a row whose marches alone pass the shader loop budget would lose
-    // VPLs on llvmpipe (gpu/ShaderLimits.h).
-    if (m_vplGrid * (1 + m_visibility->loopIterationsPerTest()) + 1 > gl::kShaderLoopIterationBudget)
-        return makeError("vplGrid={} with vplVisibility: a grid row of {} VPLs x (1 + {} march iterations) passes the "
-                         "shader loop budget of {}; lower vplGrid, raySteps or voxelBits",
-                         m_vplGrid, m_vplGrid, m_visibility->loopIterationsPerTest(), gl::kShaderLoopIterationBudget);
+    // A draw sums at least one VPL; one whose march alone passes the shader loop budget would lose light
+    // on llvmpipe (gpu/ShaderLimits.h).
+    if (1 + m_visibility->loopIterationsPerTest() + 1 > gl::kShaderLoopIterationBudget)
+        return makeError("vplVisibility: one VPL's {} march iterations pass the shader loop budget of {}; lower raySteps or voxelBits",
+                         m_visibility->loopIterationsPerTest(), gl::kShaderLoopIterationBudget);
     BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather",
                                              {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                               {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}},
-                                             m_visibility->defines()}));
+                                             nichols::VplWindow::withDefines(m_visibility->defines())}));
     m_fbo = gl::Framebuffer::create("rsm.fbo");
     return {};
 }
@@ -87,32 +87,28 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
     ctx.gbuffer.bind();
-    m_vpls->positionTexture().bind(BINDING_TEX_TECH0);
-    m_vpls->normalTexture().bind(BINDING_TEX_TECH1);
-    m_vpls->fluxTexture().bind(BINDING_TEX_TECH2);
-    m_gather.set("u_grid", m_vpls->grid());
     m_gather.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
     m_gather.set("u_minDistance2", m_minDistance * m_minDistance);
     m_gather.set("u_glossy", m_glossy ? 1 : 0);
     m_visibility->setUniforms(m_gather);
     gl::Context::current()->bindEmptyVertexArray();
-    // A batch is whole rows of the VPL grid (at least one), so the shader walks rows without an integer
-    // division per VPL. The first batch writes (also clearing pixels without geometry), the others add.
-    const int rows = m_vpls->grid() * m_vpls->layers();
-    // Each row costs grid inner iterations (each with at most one visibility march) plus one outer: rows
-    // stay within the shader loop budget, or llvmpipe drops the batch's last VPLs (gpu/ShaderLimits.h).
-    const int grid = m_vpls->grid();
+    // A batch is at most one uniform-block window of the VPL cache (nichols/VplWindow.h) and vplBatch VPLs;
+    // each VPL costs one loop iteration plus at most one visibility march: batches stay within the shader
+    // loop budget, or llvmpipe drops the batch's last VPLs (gpu/ShaderLimits.h). The first batch writes
+    // (also clearing pixels without geometry), the others add.
+    const int count = m_vpls->count();
     const int perVpl = 1 + m_visibility->loopIterationsPerTest();
-    const int rowsPerBatch =
-        std::max(1, std::min(m_vplBatch / grid, gl::kShaderLoopIterationBudget / (grid * perVpl + 1)));
+    const int perDraw = nichols::VplWindow::perDraw(std::min(m_vplBatch, (gl::kShaderLoopIterationBudget - 1) / perVpl));
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     int draws = 0;
-    for (int first = 0; first < rows; first += rowsPerBatch, ++draws) {
+    for (int first = 0; first < count; first += perDraw, ++draws) {
         if (first > 0) glEnable(GL_BLEND);
-        m_gather.set("u_rowFirst", first);
-        m_gather.set("u_rowEnd", std::min(first + rowsPerBatch, rows));
+        const int end = std::min(first + perDraw, count);
+        m_gather.set("u_windowFirst", static_cast<unsigned>(nichols::VplWindow::bind(m_vpls->buffer(), first, end - first)));
+        m_gather.set("u_vplFirst", static_cast<unsigned>(first));
+        m_gather.set("u_vplEnd", static_cast<unsigned>(end));
         m_gather.use();
         glDrawArrays(GL_TRIANGLES, 0, 3);
         // llvmpipe queues a frame's draws before rasterising; a flush per batch makes each batch a

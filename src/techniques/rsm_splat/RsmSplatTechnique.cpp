@@ -13,6 +13,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "techniques/nichols/VplWindow.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,8 @@ Expected<void> RsmSplatTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_splat, gl::Program::build({"rsmSplat", {{GL_VERTEX_SHADER, "techniques/rsm_splat/splat.vert"},
-                                                         {GL_FRAGMENT_SHADER, "techniques/rsm_splat/splat.frag"}}}));
+                                                         {GL_FRAGMENT_SHADER, "techniques/rsm_splat/splat.frag"}},
+                                             nichols::VplWindow::defines()}));
     m_fbo = gl::Framebuffer::create("rsmSplat.fbo");
     m_query = gl::Query::create("rsmSplat.fragments", GL_SAMPLES_PASSED);
     m_matchedRadius = 0.0f;
@@ -81,7 +83,15 @@ void RsmSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& ind
     m_splat.use();
     gl::Context::current()->bindEmptyVertexArray();
     glBeginQuery(GL_SAMPLES_PASSED, m_query.id());
-    glDrawArraysInstanced(GL_TRIANGLES, 0, kQuadVertices, m_vpls->count());
+    // One draw per window of the VPL cache the fragment shader reads (nichols/VplWindow.h).
+    const int perDraw = nichols::VplWindow::perDraw(m_vpls->count());
+    for (int first = 0; first < m_vpls->count(); first += perDraw) {
+        const int count = std::min(perDraw, m_vpls->count() - first);
+        m_splat.set("u_windowFirst", static_cast<unsigned>(nichols::VplWindow::bind(m_vpls->buffer(), first, count)));
+        m_splat.set("u_vplFirst", first);
+        m_splat.use();
+        glDrawArraysInstanced(GL_TRIANGLES, 0, kQuadVertices, count);
+    }
     glEndQuery(GL_SAMPLES_PASSED);
     glDisable(GL_BLEND);
     m_splatRadius = radius;
