@@ -457,9 +457,51 @@ def interactive_table(rec, path):
     return "\n".join(lines)
 
 
+def nichols_cap_table(rec, path):
+    r2, r3, prim, r7 = rec["r2"], rec["r3"], rec["prim"], rec["r7"]
+    lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); "
+             f"`{rec['command']}`: `cornell-box` unless named, RSM 256², 256 VPLs; each side one `bounce render --frames "
+             f"{rec['frames']}` with `renderer.timing=finish`, the second frame measured; sides interleaved (A B A B …); "
+             "ratio per repetition, median (min–max, n). `indirectSize` caps the indirect resolution at a fixed output.", "",
+             "| result | measured | thesis |", "|---|---|---|"]
+    caps = [k for k in r2["cases"] if int(k) <= 256]
+    lines.append(f"| R2 `multires-splat` subsplats / full fill at indirect " + " / ".join(f"{k}²" for k in caps)
+                 + f", fixed {r2['output']}² output | " + " / ".join(f"{100 * r2['cases'][k]['fillFraction']:.1f} %" for k in caps)
+                 + (f" ({r2['output']}²: {100 * r2['cases'][str(r2['output'])]['fillFraction']:.1f} %)" if str(r2['output']) in r2['cases'] and r2['output'] > 256 else "")
+                 + " | ≈ 46 / 21 / 10 / 5 % (Table 3.1) |")
+    cases = r3["cases"]
+    lines.append(f"| R3 `multires-splat` frame on `atrium`, " + " → ".join(f"{v['triangles'] / 1000:.0f}K" for v in cases.values())
+                 + f" triangles, {r3['output']}² output, indirect {r3['indirectSize']}² (n = {r3['reps']}) | "
+                 + " → ".join(f"{v['frameMs']['median']:.0f} ms" for v in cases.values())
+                 + " | nearly flat (Table 3.2) |")
+    res = r3["resolution"]
+    big = [k for k in res["frameMs"] if k != "128"][0]
+    lines.append(f"| R3 indirect {big}² / 128² frame time, {r3['output']}² output ({res['frameMs']['128']['median']:.0f} → "
+                 f"{res['frameMs'][big]['median']:.0f} ms) | {ratio_cell(res['ratio'])} | 2–3× fps for 128² → 1024² |")
+    lines.append(f"| `splatPrimitive` quads / points, {prim['output']}², frame / splat pass; side medians: frame "
+                 f"{prim['frameMs']['quads']['median']:.0f} / {prim['frameMs']['points']['median']:.0f} ms, splat "
+                 f"{prim['splatMs']['quads']['median']:.0f} / {prim['splatMs']['points']['median']:.0f} ms | "
+                 f"{ratio_cell(prim['frameRatio'])} / {ratio_cell(prim['splatRatio'])} | points ≈ 5 % faster (§3.4.1) |")
+    lines += ["", f"R7, {r7['output']}², median over {r7['reps']} interleaved runs: the gather pass against the rest of the "
+              "frame (G-buffer, direct light, RSM, VPL cache or tree, min-max mipmap, stencil set-up, upsampling), which "
+              "does not depend on the VPL count:", "",
+              "| configuration | VPLs / nodes per fragment | frame | gather (share) | rest of the frame | its largest passes |",
+              "|---|---|---|---|---|---|"]
+    for k, v in r7["cases"].items():
+        frame = v["frameMs"]["median"]
+        tech = k.split()[0]
+        gather = v["passMs"].get(f"{tech}/gather", {"median": 0.0})["median"]
+        rest = {n: m["median"] for n, m in v["passMs"].items() if n != f"{tech}/gather" and n != tech}
+        top = sorted(rest.items(), key=lambda kv: -kv[1])[:3]
+        count = f"{v['nodesPerFragment']:.0f} nodes" if tech == "hisr" else f"{v['vpls']:.0f} VPLs"
+        lines.append(f"| `{k}` | {count} | {frame:.0f} ms | {gather:.0f} ms ({100 * gather / frame:.0f} %) | "
+                     f"{frame - gather:.0f} ms | " + ", ".join(f"`{n.split('/', 1)[-1]}` {m:.0f}" for n, m in top) + " |")
+    return "\n".join(lines)
+
+
 GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table,
               "area-light": area_light_table, "vpl-visibility": vpl_visibility_table,
-              "iir": iir_table, "nichols": nichols_table, "foundation": foundation_table, "soak": soak_table,
+              "iir": iir_table, "nichols": nichols_table, "nichols-cap": nichols_cap_table, "foundation": foundation_table, "soak": soak_table,
               "interactive": interactive_table}
 
 

@@ -18,8 +18,9 @@ min / median / max with the repetition count. `cornell-box`, RSM 256^2, 256 VPLs
   splat     at 512^2: multires-splat against full-screen rsm-splat and fragment-matched rsm-splat
             (mode=matched, targetFragments = multires-splat's fragments per VPL).
   r2        subsplats per level as a fraction of full fill (counter fillFraction and subsplats/level-k),
-            output sizes 32^2 .. 256^2 and 1024^2 (the indirect buffer is the output size: bounce has no
-            separate indirect resolution; Table 3.1: ~46 / 21 / 10 / 5 % at 32..256).
+            output sizes 32^2 .. 256^2 and 1024^2 (here the indirect buffer is the output size; Table 3.1:
+            ~46 / 21 / 10 / 5 % at 32..256 in a 1024^2 window, which bench/nichols-cap/run.py measures with
+            the indirectSize cap).
   r3        multires-splat frame time against triangle count (atrium 25K / 100K / 400K) at 256^2
             (Table 3.2: nearly flat at 1024^2 on a GPU).
   r4        multires-splat normalThreshold 0.25 vs 1.4 at 512^2 (Fig. 3.9: ~4x the fps on the Buddha).

@@ -3,7 +3,8 @@
 // exactly the quantity it splats.
 // A subsplat's patch is the mean position and normal of its covered pixels (eye pyramid); its
 // material is the G-buffer's at the cell's central pixel (the pyramid stores no material).
-// Host uniforms: u_minDistance2 (m^2). Inputs: eye pyramid geometry (BINDING_TEX_TECH0) and normal
+// With the indirect-resolution cap, a base cell covers u_gbufferScale^2 G-buffer pixels.
+// Host uniforms: u_minDistance2 (m^2), u_gbufferScale. Inputs: eye pyramid geometry (BINDING_TEX_TECH0) and normal
 // (BINDING_TEX_TECH2), G-buffer, Vpl[] (BINDING_SSBO_TECH0), u_frame (eye position).
 #include "common/gbuffer.glsl"
 #include "common/frame.glsl"
@@ -13,6 +14,7 @@ layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_geometry;
 layout(binding = BINDING_TEX_TECH2) uniform sampler2DArray s_normal;
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer VplBlock { Vpl u_vpls[]; };
 uniform float u_minDistance2;
+uniform int u_gbufferScale;  // G-buffer pixels per base cell side (setting indirectSize; 1 = full size)
 
 struct Patch {
     vec3 position;
@@ -31,7 +33,7 @@ Patch subsplatGeometry(int level, ivec2 cell) {
 }
 
 Patch subsplatPatch(int level, ivec2 cell) {
-    int side = 1 << level;
+    int side = (1 << level) * u_gbufferScale;
     ivec2 pixel = min(cell * side + side / 2, ivec2(u_frame.viewport.xy) - 1);
     Patch p = subsplatGeometry(level, cell);
     p.material = readSurface(pixel);

@@ -1,7 +1,9 @@
 // Refinement flags of one pyramid level (Nichols 2010 §3.2.3 / §3.4.2 / §4.2.1.1). A cell has a
 // discontinuity when it mixes covered and uncovered texels, its max relative depth derivative exceeds
 // u_depthThreshold, a normal component's max - min exceeds u_normalThreshold (range 0..2), or, with
-// u_curvature (eye pyramid, §3.3.1), its max curvature (Eq. 3.1) exceeds u_curvatureThreshold. The
+// u_curvature (eye pyramid, §3.3.1), its max curvature (Eq. 3.1) exceeds u_curvatureThreshold. With
+// u_linearDepth (eye pyramid, §3.2.2.1's conventional min-max mipmap) the depth test is instead
+// (max - min) / min of the cell's view depths > u_depthThreshold. The
 // test covers the cell and its four diagonal neighbours (§3.4.2; u_edgeNeighbours adds the four edge
 // neighbours). refine(k) = discontinuity(k) OR refine of any child (k >= 2): refinement is monotone up
 // the pyramid, which makes "valid at level k" = !refine(k) AND refine(k+1) select exactly one level
@@ -25,6 +27,7 @@ uniform float u_normalThreshold;
 uniform bool u_edgeNeighbours;
 uniform bool u_curvature;
 uniform float u_curvatureThreshold;
+uniform bool u_linearDepth;
 
 bool discontinuity(ivec3 t) {
     if (any(lessThan(t.xy, ivec2(0))) || any(greaterThanEqual(t.xy, u_size))) return false;
@@ -32,7 +35,12 @@ bool discontinuity(ivec3 t) {
     vec4 nMin = imageLoad(i_normalMin, t), nMax = imageLoad(i_normalMax, t);
     if (covered > 0.0 && nMin.w > 0.0) return true;
     if (covered == 0.0) return false;
-    if (imageLoad(i_normal, t).w > u_depthThreshold) return true;
+    if (u_linearDepth) {
+        float zMin = imageLoad(i_normal, t).w;
+        if (nMax.w - zMin > u_depthThreshold * max(zMin, 1e-6)) return true;
+    } else if (imageLoad(i_normal, t).w > u_depthThreshold) {
+        return true;
+    }
     if (u_curvature && imageLoad(i_curvature, t).r > u_curvatureThreshold) return true;
     return any(greaterThan(nMax.xyz - nMin.xyz, vec3(u_normalThreshold)));
 }

@@ -2,8 +2,8 @@
 // the last row/column of odd-sized levels): sums of position, normal, flux and area; max of the depth
 // derivative and of the depth; per-component min/max of the normal; covered/uncovered counts; the
 // fifth chain is the light pyramid's flux (summed) or the eye pyramid's optional curvature (max only,
-// §3.3.1).
-// Host uniforms: u_childSize, u_size, u_hasFlux (light pyramid), u_hasCurvature (eye pyramid).
+// §3.3.1). With u_linearDepth (eye pyramid, §3.2.2.1) normal.w is the min of the children's view depths.
+// Host uniforms: u_childSize, u_size, u_hasFlux (light pyramid), u_hasCurvature (eye pyramid), u_linearDepth.
 // Inputs: level k-1 (images BINDING_IMG0..4). Outputs: level k (images BINDING_IMG5..9).
 #include "techniques/nichols/pyramid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -21,6 +21,7 @@ uniform ivec2 u_childSize;
 uniform ivec2 u_size;
 uniform bool u_hasFlux;
 uniform bool u_hasCurvature;
+uniform bool u_linearDepth;
 
 void main() {
     ivec3 t = ivec3(gl_GlobalInvocationID.xyz);
@@ -29,13 +30,14 @@ void main() {
     ivec2 last = mix(first + 1, u_childSize - 1, equal(t.xy, u_size - 1));
     vec4 g = vec4(0.0), n = vec4(0.0), nMin = vec4(vec3(kNormalEmptyMin), 0.0), nMax = vec4(vec3(kNormalEmptyMax), 0.0),
          f = vec4(0.0);
+    if (u_linearDepth) n.w = kDepthOfEmpty;
     for (int y = first.y; y <= last.y; ++y)
         for (int x = first.x; x <= last.x; ++x) {
             ivec3 c = ivec3(x, y, t.z);
             g += imageLoad(i_geometryIn, c);
             vec4 cn = imageLoad(i_normalIn, c);
             n.xyz += cn.xyz;
-            n.w = max(n.w, cn.w);
+            n.w = u_linearDepth ? min(n.w, cn.w) : max(n.w, cn.w);
             vec4 cMin = imageLoad(i_normalMinIn, c), cMax = imageLoad(i_normalMaxIn, c);
             nMin.xyz = min(nMin.xyz, cMin.xyz);
             nMin.w += cMin.w;

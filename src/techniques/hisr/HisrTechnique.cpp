@@ -38,10 +38,12 @@ void HisrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2)");
+    nichols::visitEyeSettings(v, m_eyeThresholds, m_indirectSize);
     m_visibilitySettings.visit(v);
 }
 
-Expected<void> HisrTechnique::setup(const SetupContext&) {
+Expected<void> HisrTechnique::setup(const SetupContext& ctx) {
+    BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     if ((m_rsmSize & (m_rsmSize - 1)) != 0) return makeError("setting rsmSize={} is not a power of two", m_rsmSize);
     if (m_rootGrid > m_rsmSize) return makeError("setting rootGrid={} exceeds rsmSize={}", m_rootGrid, m_rsmSize);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
@@ -96,7 +98,8 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         m_light->buildLight(*m_rsm, m_rootGrid, nichols::PyramidThresholds{});
         buildTree();
     }
-    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds, nichols::gatherPass(m_gatherPass));
+    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds, nichols::indirectScale(m_indirectSize, ctx.gbuffer.size()),
+                   nichols::gatherPass(m_gatherPass));
     m_visibility->build(ctx);
     {
         auto s = ctx.timers.scope("gather");

@@ -35,6 +35,7 @@ private:
     int m_rootGrid = 16;       // §4.2.4: 16^2 coarsest light patches
     int m_maxDepth = 2;        // 1..3 (32^2..128^2); 2 is an assumption within the thesis's range
     float m_tau = 0.01f;       // Eq. 4.8 threshold on the normalised bound (assumption; thesis gives none)
+    int m_indirectSize = 0;  // indirect-resolution cap (thesis ch. 3: 128^2..1024^2 in 1024^2); 0 = output size
     int m_eyeCoarsest = 16;
     std::string m_upsampling = "empty-aware";  // nichols::UpsampleFilter (§3.2.5; the others for comparison)
     std::string m_gatherPass = "compute";      // nichols::GatherPass (bounce default; "stencil" is the thesis's)

@@ -53,12 +53,14 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: not adopted, up to 40 % slower)");
+    nichols::visitEyeSettings(v, m_eyeThresholds, m_indirectSize);
     v.field("lightDepthThreshold", m_lightThresholds.depth, "clusters: light-space max relative distance derivative (assumption)", 0.0f, 1e9f);
     v.field("lightNormalThreshold", m_lightThresholds.normal, "clusters: light-space normal component range (assumption)", 0.0f, 2.0f);
     m_visibilitySettings.visit(v);
 }
 
-Expected<void> IsrTechnique::setup(const SetupContext&) {
+Expected<void> IsrTechnique::setup(const SetupContext& ctx) {
+    BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     if (m_lightFinest > m_rsmSize || m_lightCoarsest > m_lightFinest)
         return makeError("settings need lightCoarsest={} <= lightFinest={} <= rsmSize={}", m_lightCoarsest, m_lightFinest, m_rsmSize);
@@ -129,7 +131,8 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             vpls = &m_clusterVpls;
         }
     }
-    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds, nichols::gatherPass(m_gatherPass));
+    m_eye->prepare(ctx, m_eyeCoarsest, m_eyeThresholds, nichols::indirectScale(m_indirectSize, ctx.gbuffer.size()),
+                   nichols::gatherPass(m_gatherPass));
     m_visibility->build(ctx);
     {
         auto s = ctx.timers.scope("gather");

@@ -29,7 +29,10 @@
 // voxel march from the subsplat's patch to the VPL (mode A's refinement still sees unoccluded light).
 //
 // Eq. 3.3's detail modulation is optional (detailModulation, alpha 0.5); it scales the glossy part too.
-// Not implemented (see docs/techniques/multires-splat.md): the linear-depth min-max variant.
+// indirectSize caps the indirect resolution (thesis ch. 3: 128^2..1024^2 in a 1024^2 window): the eye
+// pyramid, lists and atlas are built at output / 2^k and the result upsampled to the output
+// (empty-aware bilinear, nichols/output_upsample.glsl); linearDepth selects §3.2.2.1's linear-depth
+// min-max mipmap instead of the depth-derivative max-mipmap.
 // Deviations (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
 // alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007); the glossy
 // material is read from the G-buffer at each cell's central pixel; T is relative (the thesis's is an
@@ -64,7 +67,8 @@ constexpr size_t kListBudgetBytes = size_t{64} << 20;
 
 void MultiresSplatTechnique::buildEye(FrameContext& ctx) {
     m_eye->buildEye(ctx.gbuffer, m_eyeCoarsest, m_thresholds,
-                    m_curvature ? std::optional<float>(m_curvatureThreshold) : std::nullopt);
+                    m_curvature ? std::optional<float>(m_curvatureThreshold) : std::nullopt,
+                    nichols::indirectScale(m_indirectSize, ctx.gbuffer.size()));
 }
 
 void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
@@ -99,10 +103,12 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("curvatureThreshold", m_curvatureThreshold,
             "max curvature kappa = 2 sin(angle / 2) between neighbouring pixels, 0..2 (Fig. 3.10: 0.1, 0.3)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_thresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: up to 40 % slower)");
+    nichols::visitEyeSettings(v, m_thresholds, m_indirectSize);
     m_visibilitySettings.visit(v);
 }
 
-Expected<void> MultiresSplatTechnique::setup(const SetupContext&) {
+Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
+    BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
     if (m_splatPrimitive == "stencil" && m_refinement != "shared")
         return makeError("splatPrimitive=stencil splats one shared list (refinement=shared); refinement={} has one list per VPL",
@@ -160,7 +166,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             buildEye(ctx);
             m_buffer->begin(*m_eye);  // empty atlas: zero indirect light
             m_buffer->upsample(nichols::upsampleFilter(m_upsampling));
-            m_buffer->combine(ctx.gbuffer, indirect);
+            m_buffer->combine(ctx.gbuffer, indirect, 0.0f, m_eye->scale());
             return;
         }
     }
@@ -231,6 +237,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             m_refine.set("u_perVpl", perVpl ? 1 : 0);
             m_refine.set("u_relativeThreshold", m_illuminationContrast);
             m_refine.set("u_minDistance2", m_minDistance * m_minDistance);
+            m_refine.set("u_gbufferScale", m_eye->scale());
             m_refine.use();
             glEnable(GL_RASTERIZER_DISCARD);
             // One pass per level (16^2 -> full resolution); the first pass also drops uncovered cells.
@@ -267,6 +274,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             glProgramUniform2iv(points.id(), glGetUniformLocation(points.id(), "u_origins"), kMaxLevels, &origins[0].x);
             points.set("u_atlasSize", m_buffer->atlasSize());
             points.set("u_minDistance2", m_minDistance * m_minDistance);
+            points.set("u_gbufferScale", m_eye->scale());
             points.set("u_perVpl", perVpl ? 1 : 0);
             if (m_splatPrimitive != "stencil") points.set("u_glossy", glossy ? 1 : 0);
             // One fragment is one subsplat-VPL pair: a single visibility test per invocation, far within
@@ -313,7 +321,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
         auto s = ctx.timers.scope("upsample");
         m_buffer->upsample(nichols::upsampleFilter(m_upsampling));
         const float detailAlpha = m_detailModulation ? m_detailAlpha : 0.0f;
-        m_buffer->combine(ctx.gbuffer, indirect, detailAlpha);
+        m_buffer->combine(ctx.gbuffer, indirect, detailAlpha, m_eye->scale());
         if (glossy) {
             m_glossy->upsample(nichols::upsampleFilter(m_upsampling));
             m_glossyFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
@@ -327,6 +335,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             ctx.gbuffer.bind();
             m_glossy->result().bind(BINDING_TEX_TECH0);
             m_glossyCombine.set("u_detailAlpha", detailAlpha);
+            m_glossyCombine.set("u_scale", m_eye->scale());
             m_glossyCombine.use();
             gl::Context::current()->bindEmptyVertexArray();
             glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -48,6 +48,7 @@ private:
     float m_curvatureThreshold = 0.3f;  // Fig. 3.10 (0.1 and 0.3; the higher one refines less)
     int m_rsmSize = 256;
     int m_vplGrid = 16;            // thesis 16^2..128^2 VPLs
+    int m_indirectSize = 0;  // indirect-resolution cap (thesis ch. 3: 128^2..1024^2 in 1024^2); 0 = output size
     int m_eyeCoarsest = 16;        // §3.2.3: start from the 256 subsplats of 16^2
     std::string m_splatPrimitive = "points";  // §3.4.1: points (thesis) or quads; stencil (§4.2.1.1)
     std::string m_upsampling = "empty-aware";  // nichols::UpsampleFilter (§3.2.5; the others for comparison)

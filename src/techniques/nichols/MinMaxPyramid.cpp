@@ -17,6 +17,30 @@ void dispatch2D(glm::ivec2 size, int layers) {
 }
 }  // namespace
 
+void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSize) {
+    v.field("linearDepth", t.linearDepth,
+            "§3.2.2.1: eye-space depth test on a linear-depth min-max mipmap, (max - min) / min > depthThreshold, instead "
+            "of the depth-derivative max-mipmap (off: the derivative, chs. 3-5's choice)");
+    v.field("indirectSize", indirectSize, kIndirectSizeHelp, 0, 8192);
+}
+
+Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output) {
+    if (indirectSize == 0) return {};
+    const int larger = std::max(output.x, output.y);
+    if (indirectSize < 0 || (indirectSize & (indirectSize - 1)) != 0 || indirectSize > larger)
+        return makeError("indirectSize={} must be 0 (output size) or a power of two no larger than the output's larger side {}",
+                         indirectSize, larger);
+    return {};
+}
+
+int indirectScale(int indirectSize, glm::ivec2 output) {
+    int scale = 1;
+    if (indirectSize <= 0) return scale;
+    const int larger = std::max(output.x, output.y);
+    while ((larger + scale - 1) / scale > indirectSize) scale *= 2;
+    return scale;
+}
+
 Expected<MinMaxPyramid> MinMaxPyramid::create() {
     MinMaxPyramid p;
     BOUNCE_TRY(p.m_baseEye, gl::Program::build({"nichols.pyramidBaseEye",
@@ -67,8 +91,11 @@ void MinMaxPyramid::allocate(glm::ivec2 size, int layers, int coarsestSize, bool
 }
 
 void MinMaxPyramid::buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t,
-                             std::optional<float> curvatureThreshold) {
-    allocate(gbuffer.size(), 1, coarsestSize, false);
+                             std::optional<float> curvatureThreshold, int scale) {
+    BOUNCE_CHECK(scale >= 1 && (scale & (scale - 1)) == 0, "eye pyramid scale {} is a power of two", scale);
+    const glm::ivec2 full = gbuffer.size();
+    allocate((full + glm::ivec2(scale - 1)) / scale, 1, coarsestSize, false);
+    m_scale = scale;
     gbuffer.bind();
     m_geometry.bindImage(BINDING_IMG0, GL_WRITE_ONLY, 0, true);
     m_normal.bindImage(BINDING_IMG1, GL_WRITE_ONLY, 0, true);
@@ -77,9 +104,12 @@ void MinMaxPyramid::buildEye(const render::GBuffer& gbuffer, int coarsestSize, c
     m_curvature.bindImage(BINDING_IMG4, GL_WRITE_ONLY, 0, true);
     m_baseEye.set("u_size", m_sizes[0]);
     m_baseEye.set("u_curvature", curvatureThreshold ? 1 : 0);
+    m_baseEye.set("u_scale", scale);
+    m_baseEye.set("u_gbufferSize", full);
+    m_baseEye.set("u_linearDepth", t.linearDepth ? 1 : 0);
     m_baseEye.use();
     dispatch2D(m_sizes[0], 1);
-    reduceAndFlag(t, false, curvatureThreshold);
+    reduceAndFlag(t, false, curvatureThreshold, t.linearDepth);
 }
 
 void MinMaxPyramid::buildLight(const ReflectiveShadowMap& rsm, int coarsestSize, const PyramidThresholds& t) {
@@ -95,10 +125,12 @@ void MinMaxPyramid::buildLight(const ReflectiveShadowMap& rsm, int coarsestSize,
     m_baseLight.set("u_size", m_sizes[0]);
     m_baseLight.use();
     dispatch2D(m_sizes[0], m_layers);
-    reduceAndFlag(t, true, std::nullopt);
+    m_scale = 1;
+    reduceAndFlag(t, true, std::nullopt, false);  // the light pyramid keeps its distance derivative
 }
 
-void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux, std::optional<float> curvatureThreshold) {
+void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux, std::optional<float> curvatureThreshold,
+                                  bool linearDepth) {
     const bool curvature = curvatureThreshold.has_value();
     // The fifth chain: summed flux (light), max curvature (eye, optional), else unused.
     const gl::Texture* fifth = flux ? &m_flux : curvature ? &m_curvature : &m_geometry;
@@ -116,6 +148,7 @@ void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux, std::op
         m_reduce.set("u_size", size);
         m_reduce.set("u_hasFlux", flux ? 1 : 0);
         m_reduce.set("u_hasCurvature", curvature ? 1 : 0);
+        m_reduce.set("u_linearDepth", linearDepth ? 1 : 0);
         m_reduce.use();
         dispatch2D(size, m_layers);
 
@@ -131,6 +164,7 @@ void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux, std::op
         m_flag.set("u_edgeNeighbours", t.edgeNeighbours ? 1 : 0);
         m_flag.set("u_curvature", curvature ? 1 : 0);
         m_flag.set("u_curvatureThreshold", curvatureThreshold.value_or(0.0f));
+        m_flag.set("u_linearDepth", linearDepth ? 1 : 0);
         m_flag.use();
         dispatch2D(size, m_layers);
     }

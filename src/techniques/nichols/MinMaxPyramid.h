@@ -16,7 +16,28 @@ struct PyramidThresholds {
     float depth = 0.1f;   // max relative depth derivative per base texel
     float normal = 0.3f;  // max - min of any normal component, range 0..2
     bool edgeNeighbours = false;
+    // Eye pyramid only (§3.2.2.1): false = the depth-derivative max-mipmap (chs. 4, 5; bounce's default);
+    // true = the conventional min-max mipmap of linear view depth, a cell discontinuous where
+    // (max - min) / min of its depths exceeds `depth` (relative, so one threshold serves every distance).
+    bool linearDepth = false;
 };
+
+// The indirect-resolution cap (thesis ch. 3 renders the indirect light at 128^2..1024^2 in a 1024^2
+// window): setting `indirectSize` of multires-splat, isr and hisr. 0 = the output size; otherwise a
+// power of two, and the eye pyramid's base is the output divided by the smallest power of two s that
+// brings the output's larger side to at most indirectSize (ceil per axis), each base texel a point
+// sample of the G-buffer at the centre of its s x s block.
+inline constexpr const char* kIndirectSizeHelp =
+    "indirect-light resolution cap (thesis ch. 3: 128..1024 in a 1024^2 window): 0 = output size; else a power of "
+    "two <= the output's larger side; the output is divided by the smallest power of two that fits, the result "
+    "upsampled to the output by empty-aware bilinear interpolation";
+// Declares the settings `linearDepth` (t.linearDepth) and `indirectSize` of an eye pyramid's technique
+// (multires-splat, isr, hisr): one declaration, one help text.
+void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSize);
+// One-line error unless indirectSize is 0 or a power of two no larger than output's larger side.
+Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output);
+// The power-of-two divisor s of the output for indirectSize (1 for 0 or a cap the output already fits).
+int indirectScale(int indirectSize, glm::ivec2 output);
 
 class MinMaxPyramid {
 public:
@@ -25,13 +46,15 @@ public:
     // Eye space over the G-buffer (u_frame must be bound). With curvatureThreshold, also builds the
     // curvature max-mipmap (Eq. 3.1) and flags cells whose max curvature exceeds it (§3.3.1); without
     // it (isr, hisr, multires-splat's default) the curvature chain is neither built nor read.
+    // scale (indirectScale): the base level is ceil(G-buffer size / scale), one point sample per block.
     void buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t,
-                  std::optional<float> curvatureThreshold = std::nullopt);
+                  std::optional<float> curvatureThreshold = std::nullopt, int scale = 1);
     // Light space over the RSM.
     void buildLight(const ReflectiveShadowMap& rsm, int coarsestSize, const PyramidThresholds& t);
 
     int levels() const { return m_levels; }  // base level 0 .. levels() - 1 (the coarsest)
     int layers() const { return m_layers; }
+    int scale() const { return m_scale; }  // eye pyramid: G-buffer pixels per base texel side (1 = full size)
     glm::ivec2 levelSize(int level) const { return m_sizes[static_cast<size_t>(level)]; }
     // GL_TEXTURE_2D_ARRAY mip chains (nearest sampling); see pyramid.glsl.
     const gl::Texture& geometry() const { return m_geometry; }
@@ -46,13 +69,13 @@ public:
 
 private:
     void allocate(glm::ivec2 size, int layers, int coarsestSize, bool flux);
-    void reduceAndFlag(const PyramidThresholds& t, bool flux, std::optional<float> curvatureThreshold);
+    void reduceAndFlag(const PyramidThresholds& t, bool flux, std::optional<float> curvatureThreshold, bool linearDepth);
 
     gl::Program m_baseEye, m_baseLight, m_reduce, m_flag;
     gl::Texture m_geometry, m_normal, m_normalMin, m_normalMax, m_flux, m_curvature, m_refine;
     std::vector<glm::ivec2> m_sizes;
     glm::ivec2 m_baseSize{0};
-    int m_levels = 0, m_layers = 0, m_coarsest = 0;
+    int m_levels = 0, m_layers = 0, m_coarsest = 0, m_scale = 1;
     bool m_hasFlux = false;
 };
 

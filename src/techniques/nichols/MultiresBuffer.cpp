@@ -232,7 +232,7 @@ void MultiresBuffer::upsampleLevel(int k, bool replaceInherited, UpsampleFilter 
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha) {
+void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha, int scale) {
     m_combineFbo.attach(GL_COLOR_ATTACHMENT0, indirect);
     m_combineFbo.setDrawBuffers(1);
     BOUNCE_CHECK(m_combineFbo.complete(), "nichols combine framebuffer");
@@ -243,6 +243,7 @@ void MultiresBuffer::combine(const render::GBuffer& gbuffer, const gl::Texture& 
     gbuffer.bind();
     m_result.bind(BINDING_TEX_TECH0);
     m_combine.set("u_detailAlpha", detailAlpha);
+    m_combine.set("u_scale", scale);
     m_combine.use();
     gl::Context::current()->bindEmptyVertexArray();
     glDrawArrays(GL_TRIANGLES, 0, 3);

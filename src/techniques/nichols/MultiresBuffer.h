@@ -71,8 +71,10 @@ public:
     // rendered at k takes its rendered value only (else rendered + inherited, see upsample.comp).
     void upsampleLevel(int level, bool replaceInherited = false, UpsampleFilter filter = UpsampleFilter::EmptyAware);
     const gl::Texture& depthStencil() const { return m_depthStencil; }
-    // indirect = albedo / pi * result level 0, times Eq. 3.3's detail term when detailAlpha > 0.
-    void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha = 0.0f);
+    // indirect = albedo / pi * result level 0, times Eq. 3.3's detail term when detailAlpha > 0. With
+    // scale > 1 (the indirect-resolution cap, MinMaxPyramid::scale) level 0 is 1/scale of the output per
+    // side and is upsampled to it by empty-aware bilinear interpolation (output_upsample.glsl).
+    void combine(const render::GBuffer& gbuffer, const gl::Texture& indirect, float detailAlpha = 0.0f, int scale = 1);
 
     glm::ivec2 levelOrigin(int level) const { return m_origins[static_cast<size_t>(level)]; }
     glm::ivec2 levelSize(int level) const { return m_sizes[static_cast<size_t>(level)]; }

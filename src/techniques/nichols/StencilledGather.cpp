@@ -31,10 +31,11 @@ Expected<StencilledGather> StencilledGather::create() {
     return g;
 }
 
-void StencilledGather::prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds, GatherPass pass) {
+void StencilledGather::prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds, int scale,
+                               GatherPass pass) {
     {
         auto s = ctx.timers.scope("min-max-mipmap");
-        m_eye->buildEye(ctx.gbuffer, eyeCoarsest, thresholds);
+        m_eye->buildEye(ctx.gbuffer, eyeCoarsest, thresholds, std::nullopt, scale);
     }
     auto s = ctx.timers.scope("stencil-setup");
     m_tickets.clear();
@@ -98,7 +99,7 @@ void StencilledGather::gather(gl::Program& program, int batches, const std::func
 void StencilledGather::finish(FrameContext& ctx, const gl::Texture& indirect, UpsampleFilter filter) {
     auto s = ctx.timers.scope("upsample");
     m_buffer->upsample(filter);
-    m_buffer->combine(ctx.gbuffer, indirect);
+    m_buffer->combine(ctx.gbuffer, indirect, 0.0f, m_eye->scale());
 }
 
 double StencilledGather::collectCounters(Counters& out) const {

@@ -29,8 +29,9 @@ public:
 
     // Timers "min-max-mipmap" and "stencil-setup": builds the eye pyramid down to eyeCoarsest and
     // marks each covered pixel at exactly one level of the buffer.
+    // scale: the indirect-resolution cap's divisor of the output (indirectScale; 1 = full size).
     // With GatherPass::Compute, "stencil-setup" builds the cell list instead of the stencil.
-    void prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds,
+    void prepare(FrameContext& ctx, int eyeCoarsest, const PyramidThresholds& thresholds, int scale = 1,
                  GatherPass pass = GatherPass::Stencil);
     // Draws `program` over the stencilled cells of every level, with the eye pyramid's geometry and
     // normal bound at BINDING_TEX_TECH0/1 (the patch each cell gathers for). The caller opens the
@@ -39,7 +40,8 @@ public:
     // With GatherPass::Compute, `program` is the technique's compute gather (cell_gather.glsl's main), one
     // indirect dispatch per batch.
     void gather(gl::Program& program, int batches = 1, const std::function<void(int)>& setBatch = {});
-    // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance.
+    // Timer "upsample": coarse-to-fine upsampling and indirect = albedo / pi * irradiance (upsampled to the
+    // output size when prepare's scale > 1).
     void finish(FrameContext& ctx, const gl::Texture& indirect, UpsampleFilter filter = UpsampleFilter::EmptyAware);
     // After the frame is queued (Technique::collectCounters): the counters "fragments/level-k" and
     // "gatherFragments" of the last gather(); returns gatherFragments (0 when nothing was gathered).
