@@ -38,9 +38,12 @@ SIDES = {
     "isr": ("isr", {}),
     "isr regular": ("isr", {"isr.vplMode": "regular"}),
     "hisr": ("hisr", {}),
+    # the default: splatPrimitive=auto (the stencilled splat of the shared list) and refinePass=compute;
+    # before those existed, the default was the thesis's points with geometry-shader refinement
     "multires-splat": ("multires-splat", {}),
-    # §4.2.1.1's stencilled splat of the same list (same image); not in builds before it existed
-    "multires-splat stencil": ("multires-splat", {"multires-splat.splatPrimitive": "stencil"}),
+    # the thesis's point splats and geometry-shader refinement (same image); not in builds before both existed
+    "multires-splat points": ("multires-splat", {"multires-splat.splatPrimitive": "points",
+                                                 "multires-splat.refinePass": "geometry"}),
     "iir": ("iir", {}),
 }
 COUNTERS = ["vpls", "gatherFragments", "splats", "subsplats", "nodesPerFragment", "vplShadowMaps"]
@@ -50,8 +53,9 @@ RATIOS = {
     "isr over rsm 1024 VPLs": ("rsm 1024 VPLs", "isr"),
     "isr regular over rsm": ("rsm", "isr regular"),
     "hisr over rsm": ("rsm", "hisr"),
+    "hisr over rsm 1024 VPLs": ("rsm 1024 VPLs", "hisr"),
     "multires-splat over rsm-splat": ("rsm-splat", "multires-splat"),
-    "multires-splat stencil over rsm-splat": ("rsm-splat", "multires-splat stencil"),
+    "multires-splat points over rsm-splat": ("rsm-splat", "multires-splat points"),
     "multires-splat over isr regular (R1)": ("multires-splat", "isr regular"),
 }
 

@@ -68,7 +68,8 @@ TEST_F(MultiresSplatGpuTest, StencilSplatsEqualPointSplats) {
     constexpr int kSize = 48;
     for (const char* visibility : {"false", "true"}) {
         SCOPED_TRACE(visibility);
-        const std::map<std::string, std::string> base = {{"rsmSize", "64"}, {"vplGrid", "64"}, {"vplVisibility", visibility}};
+        const std::map<std::string, std::string> base = {
+            {"rsmSize", "64"}, {"vplGrid", "64"}, {"vplVisibility", visibility}, {"splatPrimitive", "points"}};
         auto stencilSettings = base;
         stencilSettings["splatPrimitive"] = "stencil";
         auto points = makePipeline(*scene, "multires-splat", base, kSize);
@@ -80,6 +81,59 @@ TEST_F(MultiresSplatGpuTest, StencilSplatsEqualPointSplats) {
         EXPECT_LT(relativeRmsError(b, a), 1e-6);
         EXPECT_EQ(s.counters.at("subsplats"), p.counters.at("subsplats"));
         EXPECT_EQ(s.counters.at("splats"), p.counters.at("splats"));
+    }
+}
+
+// refinePass=compute (refine.comp, atomic append, indirect draws) keeps the subsplats the thesis's
+// geometry-shader pass keeps (refine.geom, transform feedback): same decision (refine.glsl), same lists
+// per level, the same image in mode B and in mode A (per-VPL lists, drawn in VPL order), on a moving
+// scene's second frame too.
+TEST_F(MultiresSplatGpuTest, ComputeRefineEqualsGeometryRefine) {
+    auto scene = loadScene("cornell-box-dynamic");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 48;
+    // mode B drawn as points (one instance per VPL) and as stencil marks (one instance), mode A as points
+    const std::pair<const char*, const char*> kModes[] = {{"shared", "points"}, {"shared", "stencil"}, {"per-vpl", "points"}};
+    for (const auto& [refinement, primitive] : kModes) {
+        SCOPED_TRACE(std::string(refinement) + " " + primitive);
+        const std::map<std::string, std::string> base = {
+            {"rsmSize", "64"}, {"vplGrid", "8"}, {"refinement", refinement}, {"splatPrimitive", primitive}};
+        auto geometrySettings = base;
+        geometrySettings["refinePass"] = "geometry";
+        auto compute = makePipeline(*scene, "multires-splat", base, kSize);
+        auto geometry = makePipeline(*scene, "multires-splat", geometrySettings, kSize);
+        for (int frame = 0; frame < 2; ++frame) {
+            SCOPED_TRACE(frame);
+            const FrameStats c = compute->renderFrame(frame), g = geometry->renderFrame(frame);
+            const Image a = geometry->readback(Component::Indirect), b = compute->readback(Component::Indirect);
+            EXPECT_GT(totalRadiance(a), 0.0);
+            // Float rounding only: every texel adds the same VPLs' light in the same (VPL) order.
+            EXPECT_LT(relativeRmsError(b, a), 1e-6);
+            EXPECT_GT(c.counters.at("subsplats/level-1"), 0.0);
+            for (const auto& [name, value] : g.counters) {
+                if (name.rfind("subsplats", 0) == 0 || name == "splats") {
+                    EXPECT_EQ(c.counters.at(name), value) << name;
+                }
+            }
+        }
+    }
+}
+
+// splatPrimitive=auto (the default) resolves to the stencilled splat for the shared list and to points
+// for mode A's per-VPL lists (which the stencil cannot splat): both run, and auto gives their images.
+TEST_F(MultiresSplatGpuTest, AutoPrimitiveIsStencilForSharedAndPointsPerVpl) {
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    constexpr int kSize = 32;
+    for (const char* refinement : {"shared", "per-vpl"}) {
+        SCOPED_TRACE(refinement);
+        const std::map<std::string, std::string> base = {{"rsmSize", "64"}, {"vplGrid", "8"}, {"refinement", refinement}};
+        auto explicitSettings = base;
+        explicitSettings["splatPrimitive"] = std::string(refinement) == "shared" ? "stencil" : "points";
+        const Image automatic = renderIndirect(*scene, "multires-splat", base, kSize);
+        const Image chosen = renderIndirect(*scene, "multires-splat", explicitSettings, kSize);
+        EXPECT_GT(totalRadiance(automatic), 0.0);
+        EXPECT_EQ(relativeRmsError(automatic, chosen), 0.0);  // the same program: bit-identical
     }
 }
 

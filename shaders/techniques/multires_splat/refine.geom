@@ -1,39 +1,15 @@
-// One iterative refinement pass of multiresolution splatting (Nichols 2010 §3.2.3, Fig. 3.3).
-// Mode B (shared list): a subsplat whose cell must be refined (a depth, normal or, optionally,
-// curvature discontinuity in the cell or a diagonal neighbour, or in a descendant: the eye pyramid's
-// refine flag) emits its four children one level finer (TL, TR, BR, BL; children outside the level or
-// over uncovered pixels are dropped); any other subsplat passes through.
-// Mode A (u_perVpl, §3.2.3.1: one list per VPL, the VPL index in the subsplat's w): additionally the
-// light toward that VPL is evaluated at the four children (quadrant points, subsplat.glsl) and the
-// subsplat splits if SamplesDiffer, made relative: in any of r, g, b,
-//   max_i G_i - min_i G_i > T * max(mean_i L_i, mean_i B_i)
-// with G_i the glossy radiance toward the eye (the only part mode B's geometric criterion misses),
-// L_i the total (Lambert + glossy) radiance toward the eye from this VPL, and B_i the black floor:
-// kBlackFraction of the radiance a white Lambertian patch facing the VPL at that distance reflects,
-// Phi / (pi^2 max(r^2, r_min^2)). Every term is linear in the VPL's flux, so the test does not depend
-// on the light's intensity; B keeps grazing, nearly black regions from refining on noise.
-// Host uniforms: u_perVpl, u_relativeThreshold (T, unitless), u_minDistance2 (m^2).
-// Inputs: eye pyramid geometry, refine, normal (BINDING_TEX_TECH0..2), G-buffer (material), Vpl[]
-// (BINDING_SSBO_TECH0), u_frame (eye position). Output: g_subsplat (transform feedback).
-#include "techniques/multires_splat/subsplat.glsl"
+// One iterative refinement pass of multiresolution splatting as the thesis runs it (Nichols 2010
+// §3.2.3, Fig. 3.3; refinePass=geometry): a geometry shader over the previous pass's list, captured by
+// transform feedback. The decision is refine.glsl's (shared with refine.comp).
+// Four geometry-shader invocations per subsplat, each emitting at most one point (invocation i the
+// i-th child), which keeps every emission independent (deviation: on llvmpipe multi-vertex output
+// captured by transform feedback lost primitives, MultiresSplatTechnique.cpp).
+// Inputs: refine.glsl's. Output: g_subsplat (transform feedback).
+#include "techniques/multires_splat/refine.glsl"
 layout(points, invocations = 4) in;
 layout(points, max_vertices = 1) out;
-layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_refine;
-uniform bool u_perVpl;
-uniform float u_relativeThreshold;
 flat in ivec4 v_subsplat[];
 flat out ivec4 g_subsplat;
-
-// Bounce's choice (the thesis's T is absolute and unstated): a VPL's light below 0.1 % of what a white
-// patch facing it would reflect counts as black.
-const float kBlackFraction = 1e-3;
-
-const ivec2 kOrder[4] = ivec2[4](ivec2(0, 1), ivec2(1, 1), ivec2(1, 0), ivec2(0, 0));
-
-bool covered(int level, ivec2 cell) {
-    ivec2 size = textureSize(s_geometry, level).xy;
-    return all(lessThan(cell, size)) && texelFetch(s_geometry, ivec3(cell, 0), level).w > 0.0;
-}
 
 void emit(ivec4 subsplat) {
     g_subsplat = subsplat;
@@ -41,41 +17,12 @@ void emit(ivec4 subsplat) {
     EmitVertex();
 }
 
-bool glossyLightVaries(int level, ivec2 cell, int vpl) {
-    Vpl v = u_vpls[vpl];
-    if (v.position.w < 0.5) return false;
-    vec3 lo = vec3(1e30), hi = vec3(-1e30), total = vec3(0.0), black = vec3(0.0);
-    int samples = 0;
-    for (int i = 0; i < 4; ++i) {
-        ivec2 child = 2 * cell + kOrder[i];
-        if (!covered(level - 1, child)) continue;
-        Patch p = subsplatPatch(level - 1, child);
-        vec3 irradiance = patchIrradiance(p, v);
-        vec3 glossy = patchGlossyRadiance(p, v, irradiance);
-        lo = min(lo, glossy);
-        hi = max(hi, glossy);
-        total += glossy + (p.material.covered ? (1.0 - p.material.metallic) * p.material.albedo * kInvPi : vec3(0.0)) * irradiance;
-        vec3 d = v.position.xyz - p.position;
-        black += kBlackFraction * v.flux.rgb / (kPi * kPi * max(dot(d, d), u_minDistance2));
-        ++samples;
-    }
-    if (samples < 2) return false;
-    vec3 scale = max(total, black) / float(samples);
-    return any(greaterThan(hi - lo, u_relativeThreshold * scale));
-}
-
-// Four geometry-shader invocations per subsplat, each emitting at most one point (invocation i the
-// i-th child: TL, TR, BR, BL with GL's bottom-up rows), which keeps every emission independent.
 void main() {
     ivec4 s = v_subsplat[0];
-    int level = s.x;
-    ivec2 cell = s.yz;
-    bool split = level > 0 && texelFetch(s_refine, ivec3(cell, 0), level).r > 0.5;
-    if (!split && u_perVpl && level > 0) split = glossyLightVaries(level, cell, s.w);
-    if (split) {
-        ivec2 child = 2 * cell + kOrder[gl_InvocationID];
-        if (covered(level - 1, child)) emit(ivec4(level - 1, child, s.w));
-    } else if (gl_InvocationID == 0 && covered(level, cell)) {
-        emit(s);
+    int keep = refineStep(s);
+    if ((keep & kKeepSelf) != 0) {
+        if (gl_InvocationID == 0) emit(s);
+    } else if ((keep & (1 << gl_InvocationID)) != 0) {
+        emit(refineChild(s, gl_InvocationID));
     }
 }

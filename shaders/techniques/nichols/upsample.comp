@@ -33,10 +33,29 @@ vec4 cellValue(ivec2 c) {
     return vec4(rendered.rgb + inherited.rgb, max(rendered.a, inherited.a));
 }
 
+// Every cell's 3x3 neighbourhood comes from a (8 + 2)^2 tile of cellValue()s that the workgroup
+// fetches once (two texel fetches per tile cell instead of eighteen per cell: on llvmpipe each fetch
+// with per-lane coordinates is a loop over the lanes). Cells outside the level are alpha 0, which the
+// filter skips as it skips empty cells.
+const int kTile = 8 + 2;
+shared vec4 s_tile[kTile * kTile];
+
+vec4 tileValue(ivec2 local) {
+    return s_tile[local.y * kTile + local.x];
+}
+
 void main() {
+    ivec2 tileOrigin = ivec2(gl_WorkGroupID.xy) * 8 - 1;
+    for (int i = int(gl_LocalInvocationIndex); i < kTile * kTile; i += 64) {
+        ivec2 n = tileOrigin + ivec2(i % kTile, i / kTile);
+        bool inside = all(greaterThanEqual(n, ivec2(0))) && all(lessThan(n, u_size));
+        s_tile[i] = inside ? cellValue(n) : vec4(0.0);
+    }
+    barrier();
     ivec2 c = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(c, u_size))) return;
-    vec4 own = cellValue(c);
+    ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
+    vec4 own = tileValue(local);
     vec4 result = vec4(0.0);
     bool renderedHere = texelFetch(s_atlas, u_levelOrigin + c, 0).a > 0.5;
     if (renderedHere) {
@@ -62,9 +81,7 @@ void main() {
         float weight = 0.0;
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
-                ivec2 n = c + ivec2(dx, dy);
-                if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, u_size))) continue;
-                vec4 v = cellValue(n);
+                vec4 v = tileValue(local + ivec2(dx, dy));
                 if (v.a < 0.5) continue;
                 float w = float((2 - abs(dx)) * (2 - abs(dy)));
                 sum += w * v.rgb;

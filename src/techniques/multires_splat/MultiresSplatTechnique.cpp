@@ -7,10 +7,12 @@
 // curvature max-mipmap of §3.3.1 / Eq. 3.1, refine flags with the diagonal-neighbour test), "refine"
 // (iterative subsplat refinement: all cells of the coarsest level, then one geometry-shader pass per
 // level that splits refined subsplats into their four children, captured by transform feedback into
-// ping-pong buffers), "splat" (the shared list drawn as GL_POINTS once per VPL into the flattened
+// ping-pong buffers; refinePass=compute, the default: refine.comp, one atomic-append dispatch per pass and
+// indirect draws, same decision, refine.glsl), "splat" (the shared list drawn as GL_POINTS once per VPL into the flattened
 // multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp; splatPrimitive=stencil: the list's
 // points mark the atlas stencil and each VPL is one stencilled triangle per level, §4.2.1.1's stencilled
-// splat, the same pairs, VPLs read from uniform-block windows, nichols/VplWindow.h), "upsample"
+// splat, the same pairs, VPLs read from uniform-block windows, nichols/VplWindow.h; splatPrimitive=auto, the
+// default, is stencil for mode B and points for mode A), "upsample"
 // (coarse-to-fine, §3.2.5, then x albedo/pi).
 // Mode A: every subsplat carries its VPL index (w), the initial list holds the coarsest cells once per
 // VPL, and the refine pass also splits a subsplat when the glossy radiance toward the eye from its VPL,
@@ -63,6 +65,11 @@ constexpr int kMaxLevels = 16;            // splat.vert u_origins[16]
 // Mode A list memory per batch (two ping-pong buffers of this size); bounce's choice, not the thesis's
 // (its Table 3.1 marks configurations "N/A" that exceeded the GTX 280's memory).
 constexpr size_t kListBudgetBytes = size_t{64} << 20;
+// refinePass=compute (refine.comp): dispatch sizes (two uvec4) before the draw commands, 16 bytes each;
+// at most one workgroup row per list (GL_MAX_COMPUTE_WORK_GROUP_COUNT's guaranteed 65,535).
+constexpr size_t kControlHeaderBytes = 2 * 4 * sizeof(uint32_t);
+constexpr size_t kDrawCommandBytes = 4 * sizeof(uint32_t);
+constexpr int kMaxRegions = 65535;
 }  // namespace
 
 void MultiresSplatTechnique::buildEye(FrameContext& ctx) {
@@ -75,12 +82,18 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
-    static constexpr std::string_view kPrimitives[] = {"points", "quads", "stencil"};
+    static constexpr std::string_view kPrimitives[] = {"auto", "points", "quads", "stencil"};
     v.field("splatPrimitive", m_splatPrimitive,
             "subsplats drawn as points (thesis), as one-texel quads through a geometry shader (§3.4.1's comparison), or "
             "stencil: the list marks the atlas stencil once and each VPL splats one stencilled full-level triangle per level "
-            "(§4.2.1.1's stencilled splat; refinement=shared only); same image",
+            "(§4.2.1.1's stencilled splat; refinement=shared only); auto: stencil with refinement=shared, points with "
+            "per-vpl; same image",
             kPrimitives);
+    static constexpr std::string_view kRefinePasses[] = {"compute", "geometry"};
+    v.field("refinePass", m_refinePass,
+            "how each refinement pass runs: compute (an atomic-append dispatch per pass, indirect draws; bounce's default) "
+            "or geometry (the thesis's geometry shader with transform feedback); same subsplats, same image",
+            kRefinePasses);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2, metres (assumption)", 0.0f, 10.0f);
     v.field("detailModulation", m_detailModulation, "Eq. 3.3: modulate indirect light by alpha <V,N> + (1 - alpha) (§3.3.3)");
@@ -110,6 +123,8 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
 Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+    // auto (the default): the stencilled splat where it applies (one shared list), else the thesis's points.
+    m_primitive = m_splatPrimitive != "auto" ? m_splatPrimitive : m_refinement == "shared" ? "stencil" : "points";
     if (m_splatPrimitive == "stencil" && m_refinement != "shared")
         return makeError("splatPrimitive=stencil splats one shared list (refinement=shared); refinement={} has one list per VPL",
                          m_refinement);
@@ -136,13 +151,13 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
                               {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
                                {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat.frag"}},
                               m_visibility->defines()};
-        if (m_splatPrimitive == "quads") {
+        if (m_primitive == "quads") {
             splat.stages.push_back({GL_GEOMETRY_SHADER, "techniques/multires_splat/splat_quad.geom"});
             splat.defines.emplace_back("SPLAT_QUADS", "1");
         }
         BOUNCE_TRY(m_splat, gl::Program::build(splat));
     }
-    if (m_splatPrimitive == "stencil") {
+    if (m_primitive == "stencil") {
         BOUNCE_TRY(m_mark, gl::Program::build({"multiresSplat.mark",
                                                {{GL_VERTEX_SHADER, "techniques/multires_splat/splat.vert"},
                                                 {GL_FRAGMENT_SHADER, "techniques/multires_splat/mark.frag"}},
@@ -152,6 +167,10 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
                                                         {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat_stencil.frag"}},
                                                        nichols::VplWindow::withDefines(m_visibility->defines())}));
     }
+    BOUNCE_TRY(m_refineCompute, gl::Program::build({"multiresSplat.refineCompute",
+                                                    {{GL_COMPUTE_SHADER, "techniques/multires_splat/refine.comp"}}}));
+    BOUNCE_TRY(m_refineReset, gl::Program::build({"multiresSplat.refineReset",
+                                                  {{GL_COMPUTE_SHADER, "techniques/multires_splat/refine_reset.comp"}}}));
     m_feedback[0] = gl::TransformFeedback::create("multiresSplat.feedback0");
     m_feedback[1] = gl::TransformFeedback::create("multiresSplat.feedback1");
     m_levelCounts = gl::Buffer::create("multiresSplat.levelCounts", kMaxLevels * sizeof(uint32_t));
@@ -188,9 +207,12 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
     const int vplCount = m_vpls->count();
     // Mode A holds one list per VPL side by side; VPLs are refined and splatted in batches whose
     // worst-case lists fit kListBudgetBytes.
-    const int batch = perVpl ? static_cast<int>(std::clamp<size_t>(kListBudgetBytes / (perList * sizeof(glm::ivec4)), 1,
+    int batch = perVpl ? static_cast<int>(std::clamp<size_t>(kListBudgetBytes / (perList * sizeof(glm::ivec4)), 1,
                                                                    static_cast<size_t>(std::max(vplCount, 1))))
                              : 1;
+    const bool computeRefine = m_refinePass == "compute";
+    // refinePass=compute: one workgroup row per list of the batch (GL guarantees 65,535 rows).
+    if (computeRefine) batch = std::min(batch, kMaxRegions);
     const size_t capacity = perList * static_cast<size_t>(batch) * sizeof(glm::ivec4);
     if (capacity != m_capacity) {
         m_capacity = capacity;
@@ -204,6 +226,11 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             glTransformFeedbackBufferBase(m_feedback[i].id(), 0, m_lists[i].id());
         }
     }
+    // refinePass=compute's control block: two uvec4 dispatch sizes, then two sides of one
+    // DrawArraysIndirectCommand per list (refine.comp).
+    const size_t controlBytes = kControlHeaderBytes + 2 * static_cast<size_t>(batch) * kDrawCommandBytes;
+    if (computeRefine && (!m_control || m_control.size() != controlBytes))
+        m_control = gl::Buffer::create("multiresSplat.refineControl", controlBytes);
     m_levelCounts.clearZero();
     {
         auto s = ctx.timers.scope("splat");
@@ -223,37 +250,91 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
         int current = 0;
         {
             auto s = ctx.timers.scope("refine");
-            const glm::ivec2 top = m_eye->levelSize(levels - 1);
-            std::vector<glm::ivec4> initial;
-            for (int l = first; l < first + n; ++l)
-                for (int y = 0; y < top.y; ++y)
-                    for (int x = 0; x < top.x; ++x) initial.emplace_back(levels - 1, x, y, perVpl ? l : 0);
-            m_lists[0].upload(0, initial.size() * sizeof(glm::ivec4), initial.data());
             m_eye->geometry().bind(BINDING_TEX_TECH0);
             m_eye->refine().bind(BINDING_TEX_TECH1);
             m_eye->normal().bind(BINDING_TEX_TECH2);
             ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
-            m_refine.set("u_perVpl", perVpl ? 1 : 0);
-            m_refine.set("u_relativeThreshold", m_illuminationContrast);
-            m_refine.set("u_minDistance2", m_minDistance * m_minDistance);
-            m_refine.set("u_gbufferScale", m_eye->scale());
-            m_refine.use();
-            glEnable(GL_RASTERIZER_DISCARD);
-            // One pass per level (16^2 -> full resolution); the first pass also drops uncovered cells.
-            for (int pass = 0; pass < levels; ++pass) {
-                const int next = 1 - current;
-                glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, m_feedback[next].id());
-                m_vaos[current].bind();
-                glBeginTransformFeedback(GL_POINTS);
-                if (pass == 0) glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(initial.size()));
-                else glDrawTransformFeedback(GL_POINTS, m_feedback[current].id());
-                glEndTransformFeedback();
-                glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
-                current = next;
+            gl::Program& refine = computeRefine ? m_refineCompute : m_refine;
+            std::vector<glm::ivec2> sizes(kMaxLevels, glm::ivec2(0));
+            for (int k = 0; k < levels; ++k) sizes[static_cast<size_t>(k)] = m_eye->levelSize(k);
+            glProgramUniform2iv(refine.id(), glGetUniformLocation(refine.id(), "u_levelSize"), kMaxLevels, &sizes[0].x);
+            refine.set("u_perVpl", perVpl ? 1 : 0);
+            refine.set("u_relativeThreshold", m_illuminationContrast);
+            refine.set("u_minDistance2", m_minDistance * m_minDistance);
+            refine.set("u_gbufferScale", m_eye->scale());
+            const glm::ivec2 top = m_eye->levelSize(levels - 1);
+            if (computeRefine) {
+                // The final list is drawn once: mode B's splat with one instance per VPL; mode A's lists
+                // and the stencil marks with one.
+                const int instances = perVpl || m_primitive == "stencil" ? 1 : vplCount;
+                m_refineReset.set("u_regions", n);
+                m_refineReset.set("u_regionStride", static_cast<unsigned>(perList));
+                m_refineReset.set("u_instances", static_cast<unsigned>(instances));
+                refine.set("u_coarsest", levels - 1);
+                refine.set("u_coarsestSize", top);
+                refine.set("u_firstVpl", first);
+                refine.set("u_regionStride", static_cast<unsigned>(perList));
+                refine.set("u_regions", n);
+                m_control.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
+                glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_control.id());
+                // One pass per level (16^2 -> full resolution); the first generates the coarsest cells
+                // and drops the uncovered ones.
+                for (int pass = 0; pass < levels; ++pass) {
+                    const int next = 1 - current;
+                    m_refineReset.set("u_side", next);
+                    m_refineReset.use();
+                    glDispatchCompute(static_cast<GLuint>((n + 63) / 64), 1, 1);
+                    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+                    m_lists[current].bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+                    m_lists[next].bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+                    refine.set("u_initial", pass == 0 ? 1 : 0);
+                    refine.set("u_src", current);
+                    refine.use();
+                    if (pass == 0) {
+                        glDispatchCompute(static_cast<GLuint>((top.x * top.y + 63) / 64), static_cast<GLuint>(n), 1);
+                    } else {
+                        glDispatchComputeIndirect(static_cast<GLintptr>(current * sizeof(glm::uvec4)));
+                    }
+                    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+                    current = next;
+                }
+                glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+            } else {
+                std::vector<glm::ivec4> initial;
+                for (int l = first; l < first + n; ++l)
+                    for (int y = 0; y < top.y; ++y)
+                        for (int x = 0; x < top.x; ++x) initial.emplace_back(levels - 1, x, y, perVpl ? l : 0);
+                m_lists[0].upload(0, initial.size() * sizeof(glm::ivec4), initial.data());
+                refine.use();
+                glEnable(GL_RASTERIZER_DISCARD);
+                // One pass per level (16^2 -> full resolution); the first pass also drops uncovered cells.
+                for (int pass = 0; pass < levels; ++pass) {
+                    const int next = 1 - current;
+                    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, m_feedback[next].id());
+                    m_vaos[current].bind();
+                    glBeginTransformFeedback(GL_POINTS);
+                    if (pass == 0) glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(initial.size()));
+                    else glDrawTransformFeedback(GL_POINTS, m_feedback[current].id());
+                    glEndTransformFeedback();
+                    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+                    current = next;
+                }
+                glDisable(GL_RASTERIZER_DISCARD);
             }
-            glDisable(GL_RASTERIZER_DISCARD);
         }
+        // The final list as points: refinePass=compute draws one indirect command per list (counts from
+        // refine.comp, instances from refine_reset.comp), geometry its transform feedback.
+        const auto drawList = [&](int instances) {
+            if (computeRefine) {
+                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_control.id());
+                const size_t offset = kControlHeaderBytes + static_cast<size_t>(current) * n * kDrawCommandBytes;
+                glMultiDrawArraysIndirect(GL_POINTS, reinterpret_cast<const void*>(offset), n, static_cast<GLsizei>(kDrawCommandBytes));
+                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+            } else {
+                glDrawTransformFeedbackInstanced(GL_POINTS, m_feedback[current].id(), instances);
+            }
+        };
         {
             auto s = ctx.timers.scope("splat");
             if (glossy) {
@@ -270,13 +351,13 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             for (int k = 0; k < levels; ++k) origins[static_cast<size_t>(k)] = m_buffer->levelOrigin(k);
             // splatPrimitive=stencil: the list's points only mark the stencil (splat.vert, one instance, so
             // its per-level subsplat counts are the list's); the VPLs are splatted below.
-            gl::Program& points = m_splatPrimitive == "stencil" ? m_mark : m_splat;
+            gl::Program& points = m_primitive == "stencil" ? m_mark : m_splat;
             glProgramUniform2iv(points.id(), glGetUniformLocation(points.id(), "u_origins"), kMaxLevels, &origins[0].x);
             points.set("u_atlasSize", m_buffer->atlasSize());
             points.set("u_minDistance2", m_minDistance * m_minDistance);
             points.set("u_gbufferScale", m_eye->scale());
             points.set("u_perVpl", perVpl ? 1 : 0);
-            if (m_splatPrimitive != "stencil") points.set("u_glossy", glossy ? 1 : 0);
+            if (m_primitive != "stencil") points.set("u_glossy", glossy ? 1 : 0);
             // One fragment is one subsplat-VPL pair: a single visibility test per invocation, far within
             // the shader loop budget, so the splat draw needs no batching for it.
             m_visibility->setUniforms(points);
@@ -287,14 +368,14 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             m_levelCounts.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
             points.use();
             m_vaos[current].bind();
-            if (m_splatPrimitive == "stencil") {
+            if (m_primitive == "stencil") {
                 glDisable(GL_BLEND);
                 glEnable(GL_STENCIL_TEST);
                 glStencilFunc(GL_ALWAYS, 1, 0xFF);
                 glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
                 glStencilMask(0xFF);
                 glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-                glDrawTransformFeedback(GL_POINTS, m_feedback[current].id());
+                drawList(1);
                 glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
                 glDisable(GL_STENCIL_TEST);
                 m_splatStencil.set("u_minDistance2", m_minDistance * m_minDistance);
@@ -308,7 +389,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                     for (int k = 0; k < levels; ++k) m_buffer->splatLevel(k, m_splatStencil, 1, count);
                 }
             } else {
-                glDrawTransformFeedbackInstanced(GL_POINTS, m_feedback[current].id(), perVpl ? 1 : vplCount);
+                drawList(perVpl ? 1 : vplCount);
             }
             glDisable(GL_BLEND);
         }

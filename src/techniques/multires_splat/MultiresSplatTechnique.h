@@ -50,7 +50,11 @@ private:
     int m_vplGrid = 16;            // thesis 16^2..128^2 VPLs
     int m_indirectSize = 0;  // indirect-resolution cap (thesis ch. 3: 128^2..1024^2 in 1024^2); 0 = output size
     int m_eyeCoarsest = 16;        // §3.2.3: start from the 256 subsplats of 16^2
-    std::string m_splatPrimitive = "points";  // §3.4.1: points (thesis) or quads; stencil (§4.2.1.1)
+    // §3.4.1: points (thesis) or quads; stencil (§4.2.1.1); auto (default): stencil for refinement=shared,
+    // points for per-vpl. m_primitive is the resolved one.
+    std::string m_splatPrimitive = "auto";
+    std::string m_primitive = "stencil";
+    std::string m_refinePass = "compute";  // refine.comp (bounce's default) or refine.geom (the thesis's GS + transform feedback)
     std::string m_upsampling = "empty-aware";  // nichols::UpsampleFilter (§3.2.5; the others for comparison)
     float m_minDistance = 0.05f;   // metres; Eq. 3.2's r^2 clamp (assumption)
     bool m_detailModulation = false;  // Eq. 3.3 (§3.3.3: optional, used with high normal thresholds)
@@ -66,6 +70,8 @@ private:
     std::optional<nichols::MultiresBuffer> m_buffer;
     std::optional<nichols::MultiresBuffer> m_glossy;  // mode A's glossy radiance, same levels as m_buffer
     gl::Program m_refine, m_splat, m_glossyCombine;
+    gl::Program m_refineCompute, m_refineReset;  // refinePass=compute
+    gl::Buffer m_control;  // refinePass=compute: dispatch sizes and per-list draw commands (refine.comp)
     gl::Program m_mark, m_splatStencil;  // splatPrimitive=stencil: the list marks the stencil; VPLs splat stencilled
     gl::Framebuffer m_splatFbo, m_glossyFbo;  // mode A: both atlases (MRT); indirect target (glossy added)
     gl::Buffer m_lists[2];
