@@ -437,6 +437,8 @@ def interactive_table(rec, path):
              + (f" \"issue filed\": commit {start.get('beforeCommit', '—')} from `{start_path}` (another run, same machine "
                 "kind; compare its ratios, not its times)." if start_path else ""), "",
              "| size | technique | frame ms (fps) | before | issue filed | goal |", "|---|---|---|---|---|---|"]
+    # Without an issue-start record the "issue filed" column would be empty: left out.
+    drop = (lambda row: row) if start_path else (lambda row: "|".join(c for k, c in enumerate(row.split("|")) if k != 5))
     goals = {"isr": "≥ 10 fps at 256²", "hisr": "≥ 10 fps at 256²"}
     cell = lambda x: f"{x['frameMs']['median']:.1f} ({x['fps']:.1f})" if x else "—"
     for size in map(str, rec["sizes"]):
@@ -455,6 +457,21 @@ def interactive_table(rec, path):
             b = before.get(size, {}).get("ratios", {}).get(key)
             i = issue.get(size, {}).get("ratios", {}).get(key)
             lines.append(f"| {size}² | {key} | {rcell(r)} | {rcell(b)} | {rcell(i)} | {rgoals.get(key, '')} |")
+    first = next(k for k, line in enumerate(lines) if line.startswith("| size | technique"))
+    lines = [drop(line) if line.startswith("|") and k >= first else line for k, line in enumerate(lines)]
+    passes = rec.get("passes256") or {}
+    if passes:
+        lines += ["", "Per pass at 256² (this build, one run of 6 frames with `renderer.timing=finish`: a glFinish at every "
+                  "pass boundary, so each pass's wall time is its own work; median over the frames after the first, ms):", "",
+                  "| side | frame | the technique's passes | shared passes (G-buffer, shadow maps, direct, compose) |",
+                  "|---|---|---|---|"]
+        shared = ("gbuffer", "shadow-maps", "direct", "compose")
+        for name, side in passes.items():
+            ms = side["passMs"]
+            own = sorted(((k.split("/", 1)[1], v) for k, v in ms.items() if "/" in k), key=lambda kv: -kv[1])
+            lines.append(f"| `{name}` | {ms.get('frame', 0.0):.1f} | "
+                         + ", ".join(f"{k} {v:.1f}" for k, v in own if v >= 0.05)
+                         + f" | {sum(ms.get(k, 0.0) for k in shared):.1f} |")
     return "\n".join(lines)
 
 

@@ -22,6 +22,11 @@ public:
     void debugViews(std::vector<DebugView>& out) const override;
 
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
+    const nichols::MinMaxPyramid& eyePyramid() const { return m_eye->eye(); }
+    // The VPL tree as the gather reads it (tree.comp's records), for tests that walk it on the CPU.
+    const gl::Buffer& treeRecords() const { return m_tree; }
+    const std::vector<int>& treeLevelOffsets() const { return m_treeOffsets; }
+    const nichols::MinMaxPyramid& lightPyramid() const { return *m_light; }
 
 private:
     // Loop iterations of one root's walk to `depth` levels, its visibility tests included.
