@@ -183,6 +183,41 @@ TEST_F(IsrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
 // Cornell short block's top face and the floor below its front edge); shot from its texels' mean point,
 // its VPL floated 1 cm in front of the block and lit two hot spots on its front face. Shot from the
 // patch's centre sample, no pixel exceeds the every-texel limit by that much any more.
+// Light clusters partition the RSM (§4.2.2): each texel's flux lands in exactly one cluster VPL, so the
+// VPLs' flux adds up to the light pyramid's coarsest level (the whole RSM's flux), at power-of-two and
+// odd-sized RSMs (whose pyramid levels halve with floor, so a level's last row and column take three
+// children). The walk up the pyramid differs per invocation: a level's size must not come from
+// textureSize with that level (llvmpipe answers with the first SIMD lane's level). two-rooms' point light:
+// six cube faces whose borders see walls, so the odd levels' last rows and columns carry flux.
+TEST_F(IsrGpuTest, LightClustersConserveTheRsmFlux) {
+    auto scene = loadScene("two-rooms");
+    ASSERT_TRUE(scene.ok());
+    for (const char* rsmSize : {"64", "100", "75"}) {
+        SCOPED_TRACE(rsmSize);
+        auto p = makePipeline(*scene, "isr", {{"rsmSize", rsmSize}, {"vplGrid", "1"}, {"lightFinest", "64"}, {"vplMode", "clusters"}}, 32);
+        p->renderFrame(0);
+        const auto& isr = dynamic_cast<const IsrTechnique&>(p->technique());
+        const nichols::MinMaxPyramid& light = isr.lightPyramid();
+        const int top = light.levels() - 1;
+        const glm::ivec2 topSize = light.levelSize(top);
+        glm::dvec3 rsmFlux(0.0);
+        std::vector<glm::vec4> texels(static_cast<size_t>(topSize.x) * topSize.y * light.layers());  // every layer
+        glGetTextureImage(light.flux().id(), top, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
+                          texels.data());
+        for (const glm::vec4& f : texels) rsmFlux += glm::dvec3(f);
+        uint32_t count = 0;
+        isr.clusterCount().download(0, sizeof(count), &count);
+        ASSERT_GT(count, 0u);
+        std::vector<nichols::VplRecord> vpls(count);
+        isr.clusterVpls().download(0, count * sizeof(nichols::VplRecord), vpls.data());
+        glm::dvec3 vplFlux(0.0);
+        for (const nichols::VplRecord& v : vpls) vplFlux += glm::dvec3(v.flux);
+        ASSERT_GT(rsmFlux.g, 0.0);
+        // float sums of the same texels in different orders: 1e-4 relative
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(vplFlux[c], rsmFlux[c], 1e-4 * rsmFlux[c]) << "channel " << c;
+    }
+}
+
 TEST_F(IsrGpuTest, LightClustersLeaveNoHotSpots) {
     auto scene = loadScene("cornell-box");
     ASSERT_TRUE(scene.ok());

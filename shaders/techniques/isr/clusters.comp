@@ -5,7 +5,9 @@
 // patchVpl: on the RSM sample at the patch's centre, with the patch's summed flux and area, so omega_j
 // grows with the patch, Eqs. 4.2-4.3).
 // Appends to the VPL cache with an atomic counter.
-// Host uniforms: u_finest (level f), u_coarsest. Inputs: light pyramid (BINDING_TEX_TECH0..3).
+// Host uniforms: u_finest (level f), u_coarsest, u_levelSize[level] (the pyramid's level sizes: the walk's
+// level differs between invocations, and textureSize with such a level returns the first SIMD lane's
+// size on llvmpipe, stale when that lane has left the loop). Inputs: light pyramid (BINDING_TEX_TECH0..3).
 // Outputs: Vpl[] (BINDING_SSBO_TECH0), count (BINDING_SSBO_TECH1).
 #include "techniques/nichols/vpl.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,6 +19,7 @@ layout(std430, binding = BINDING_SSBO_TECH0) writeonly buffer VplBlock { Vpl u_v
 layout(std430, binding = BINDING_SSBO_TECH1) buffer VplCountBlock { uint u_vplCount; };
 uniform int u_finest;
 uniform int u_coarsest;
+uniform ivec2 u_levelSize[16];
 
 bool refined(ivec2 cell, int level, int layer) {
     return texelFetch(s_refine, ivec3(cell, layer), level).r > 0.5;
@@ -24,13 +27,13 @@ bool refined(ivec2 cell, int level, int layer) {
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID.xyz);
-    ivec2 size = textureSize(s_geometry, u_finest).xy;
+    ivec2 size = u_levelSize[u_finest];
     if (any(greaterThanEqual(id.xy, size))) return;
     ivec2 cell = id.xy;
     int level = u_finest;
     // Walk up while the parent is not refined: the valid level is the coarsest unrefined ancestor.
     while (level < u_coarsest) {
-        ivec2 parentSize = textureSize(s_geometry, level + 1).xy;
+        ivec2 parentSize = u_levelSize[level + 1];
         ivec2 parent = min(cell / 2, parentSize - 1);
         if (refined(parent, level + 1, id.z)) break;
         cell = parent;

@@ -28,6 +28,10 @@ public:
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
     const nichols::MinMaxPyramid& eyePyramid() const { return m_eye->eye(); }
     int vplCount() const { return m_vplCount; }  // as of the last collectCounters
+    // vplMode=clusters: the light pyramid and the cluster VPLs (count in clusterCount()), for tests.
+    const nichols::MinMaxPyramid& lightPyramid() const { return *m_light; }
+    const gl::Buffer& clusterVpls() const { return m_clusterVpls; }
+    const gl::Buffer& clusterCount() const { return m_count; }
 
     static constexpr std::array<std::string_view, 2> kVplModes{"clusters", "regular"};
 
