@@ -31,6 +31,9 @@ from record import new_record, write_record  # noqa: E402
 
 FRAMES = 2
 FINISH = {"renderer.timing": "finish"}
+# The thesis's multiresolution splatting (Nichols 2010 ch. 3): point splats and geometry-shader refinement, not
+# bounce's defaults (splatPrimitive=auto, refinePass=compute; same images, docs/techniques/multires-splat.md).
+THESIS = {"splatPrimitive": "points", "refinePass": "geometry"}
 
 
 def mean(values):
@@ -92,13 +95,13 @@ def main():
 
     # r3: triangles at a fixed output and indirect resolution; then the indirect resolution's cost.
     r3reps = max(2, reps - 2)
-    sides = {t: ("atrium", "multires-splat", {"indirectSize": 128}, [f"triangles={t}"]) for t in ["25000", "100000", "400000"]}
+    sides = {t: ("atrium", "multires-splat", {**THESIS, "indirectSize": 128}, [f"triangles={t}"]) for t in ["25000", "100000", "400000"]}
     runs, cmds = interleaved(bounce, sides, r3reps, r3_output,
                              lambda r: {"frame": frame_ms(r), "triangles": counter_mean(r, "triangles")})
     rec["r3"] = {"output": r3_output, "indirectSize": 128, "reps": r3reps, "commands": cmds,
                  "cases": {k: {"triangles": v[0]["triangles"], "frameMs": summary(x["frame"] for x in v)} for k, v in runs.items()}}
-    sides = {"128": ("cornell-box", "multires-splat", {"indirectSize": 128}, []),
-             str(r3_output): ("cornell-box", "multires-splat", {"indirectSize": 0}, [])}
+    sides = {"128": ("cornell-box", "multires-splat", {**THESIS, "indirectSize": 128}, []),
+             str(r3_output): ("cornell-box", "multires-splat", {**THESIS, "indirectSize": 0}, [])}
     runs, cmds = interleaved(bounce, sides, reps, r3_output, frame_ms)
     rec["r3"]["resolution"] = {"commands": cmds, "frameMs": {k: summary(v) for k, v in runs.items()},
                                "ratio": ratio(runs[str(r3_output)], runs["128"])}
@@ -106,8 +109,8 @@ def main():
           round(rec["r3"]["resolution"]["ratio"]["median"], 2), flush=True)
 
     # prim: points vs quads (same fragments, same image).
-    sides = {"points": ("cornell-box", "multires-splat", {"splatPrimitive": "points"}, []),
-             "quads": ("cornell-box", "multires-splat", {"splatPrimitive": "quads"}, [])}
+    sides = {"points": ("cornell-box", "multires-splat", {**THESIS, "splatPrimitive": "points"}, []),
+             "quads": ("cornell-box", "multires-splat", {**THESIS, "splatPrimitive": "quads"}, [])}
     runs, cmds = interleaved(bounce, sides, reps, r3_output,
                              lambda r: {"frame": frame_ms(r), "splat": mean(pass_ms(r, "multires-splat/splat"))})
     rec["prim"] = {"output": r3_output, "reps": reps, "commands": cmds,

@@ -37,6 +37,9 @@ from record import new_record, write_record  # noqa: E402
 
 FRAMES = 2
 FINISH = {"renderer.timing": "finish"}
+# The thesis's multiresolution splatting (Nichols 2010 ch. 3): point splats and geometry-shader refinement, not
+# bounce's defaults (splatPrimitive=auto, refinePass=compute; same images, docs/techniques/multires-splat.md).
+THESIS = {"splatPrimitive": "points", "refinePass": "geometry"}
 
 
 def one(values):
@@ -82,7 +85,7 @@ def main():
                 "light": one(pass_ms(r, "multires-splat/refine")) + one(pass_ms(r, "multires-splat/splat"))
                 + one(pass_ms(r, "isr/stencil-setup")) + one(pass_ms(r, "isr/gather")),
                 "fragments": counter_mean(r, "gatherFragments") or counter_mean(r, "subsplats")}
-    runs, cmds = interleaved(bounce, {"multires-splat": ("cornell-box", "multires-splat", {}, []),
+    runs, cmds = interleaved(bounce, {"multires-splat": ("cornell-box", "multires-splat", dict(THESIS), []),
                                       "isr": ("cornell-box", "isr", {"vplMode": "regular"}, [])}, reps, big, r1_measure)
     ms, isr = runs["multires-splat"], runs["isr"]
     rec["r1"] = {"size": big, "commands": cmds, "runs": runs,
@@ -101,9 +104,9 @@ def main():
     print("gather", {k: round(v["median"], 2) for k, v in rec["gather"]["speedupOverRsm"].items()}, flush=True)
 
     # splat: multires-splat against rsm-splat full and fragment-matched.
-    probe, _ = render(bounce, "cornell-box", "multires-splat", mid, FRAMES, FINISH)
+    probe, _ = render(bounce, "cornell-box", "multires-splat", mid, FRAMES, {**FINISH, **THESIS})
     per_vpl = counter_mean(probe, "fillFraction") * mid * mid  # multires fragments per VPL
-    sides = {"multires-splat": ("cornell-box", "multires-splat", {}, []),
+    sides = {"multires-splat": ("cornell-box", "multires-splat", dict(THESIS), []),
              "rsm-splat full": ("cornell-box", "rsm-splat", {"mode": "full"}, []),
              "rsm-splat matched": ("cornell-box", "rsm-splat", {"mode": "matched", "targetFragments": f"{per_vpl:.0f}"}, [])}
     runs, cmds = interleaved(bounce, sides, max(2, reps - 2), mid, frame_ms)
@@ -115,7 +118,7 @@ def main():
     # r2: fill fractions (counts: one run per size).
     r2 = {}
     for size in sorted({32, 64, 128, 256, big}):
-        r, cmd = render(bounce, "cornell-box", "multires-splat", size, FRAMES, FINISH)
+        r, cmd = render(bounce, "cornell-box", "multires-splat", size, FRAMES, {**FINISH, **THESIS})
         levels = sorted(int(k.split("-")[-1]) for k in r["frames"][-1]["counters"] if k.startswith("subsplats/level-"))
         r2[str(size)] = {"command": cmd, "fillFraction": counter_mean(r, "fillFraction"),
                          "subsplats": counter_mean(r, "subsplats"),
@@ -124,17 +127,17 @@ def main():
     print("r2", {k: round(100 * v["fillFraction"], 1) for k, v in r2.items()}, flush=True)
 
     # r3: triangles.
-    sides = {t: ("atrium", "multires-splat", {}, [f"triangles={t}"]) for t in ["25000", "100000", "400000"]}
+    sides = {t: ("atrium", "multires-splat", dict(THESIS), [f"triangles={t}"]) for t in ["25000", "100000", "400000"]}
     runs, cmds = interleaved(bounce, sides, max(2, reps - 2), small, lambda r: {"frame": frame_ms(r), "triangles": counter_mean(r, "triangles")})
     rec["r3"] = {"size": small, "commands": cmds,
                  "cases": {k: {"triangles": v[0]["triangles"], "frameMs": summary(x["frame"] for x in v)} for k, v in runs.items()}}
     print("r3", {k: round(v["frameMs"]["median"]) for k, v in rec["r3"]["cases"].items()}, flush=True)
 
     # r4, r5: thresholds and the edge-neighbour test.
-    for key, sides in [("r4", {"0.25": ("cornell-box", "multires-splat", {"normalThreshold": "0.25"}, []),
-                               "1.4": ("cornell-box", "multires-splat", {"normalThreshold": "1.4"}, [])}),
-                       ("r5", {"off": ("cornell-box", "multires-splat", {"edgeNeighbours": "false"}, []),
-                               "on": ("cornell-box", "multires-splat", {"edgeNeighbours": "true"}, [])})]:
+    for key, sides in [("r4", {"0.25": ("cornell-box", "multires-splat", {**THESIS, "normalThreshold": "0.25"}, []),
+                               "1.4": ("cornell-box", "multires-splat", {**THESIS, "normalThreshold": "1.4"}, [])}),
+                       ("r5", {"off": ("cornell-box", "multires-splat", {**THESIS, "edgeNeighbours": "false"}, []),
+                               "on": ("cornell-box", "multires-splat", {**THESIS, "edgeNeighbours": "true"}, [])})]:
         runs, cmds = interleaved(bounce, sides, max(2, reps - 2), mid,
                                  lambda r: {"frame": frame_ms(r), "subsplats": counter_mean(r, "subsplats")})
         a, b = list(sides)
