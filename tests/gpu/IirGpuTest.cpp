@@ -155,6 +155,25 @@ TEST_F(IirGpuTest, ComparisonModeRegeneratesEveryVplAndMapEachFrame) {
     }
 }
 
+// vplMapSamples (GL_SAMPLES_PASSED over the frame's paraboloid maps, read after the frame): a paraboloid
+// projects the hemisphere onto the map's inscribed disc, so a map passes at most pi/4 of its 64^2 texels
+// (+2 % for the disc's edge texels); in the Cornell box every VPL's hemisphere sees the walls except
+// through the open front, so each map passes a good share of them. No maps (incremental, nothing new):
+// no counter.
+TEST_F(IirGpuTest, MapSamplesCountTheMapsCoveredTexels) {
+    const Scene scene = load("cornell-box");
+    IirRun run = makeRun(scene, 16, {{"maxLights", "32"}, {"incremental", "false"}});
+    ASSERT_TRUE(run.pipeline);
+    const FrameStats stats = run.pipeline->renderFrame(0);
+    const double maps = stats.counters.at("vplShadowMaps");
+    ASSERT_GT(maps, 0.0);
+    const double perMap = stats.counters.at("vplMapSamples") / maps;
+    RecordProperty("samplesPerMap", std::to_string(perMap));
+    const double disc = 3.14159265358979 / 4.0 * 64.0 * 64.0;
+    EXPECT_LE(perMap, 1.02 * disc);
+    EXPECT_GT(perMap, 0.5 * disc);
+}
+
 TEST_F(IirGpuTest, IndirectImageIsCloseToTheOneBounceReference) {
     const Scene scene = load("cornell-box");
     constexpr int kSize = 48;

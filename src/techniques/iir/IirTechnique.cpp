@@ -212,6 +212,7 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
     m_shadowMaps = gl::Texture::create("iir.paraboloidMaps", maps);
     m_shadowMaps.setCompareMode(true);
     m_shadowFbo = gl::Framebuffer::create("iir.paraboloid.fbo");
+    m_mapSamples = gl::Query::create("iir.mapSamples", GL_SAMPLES_PASSED);
 
     const int n = m_tilesX, m = m_tilesY;
     m_tileSize = {(ctx.size.x + n - 1) / n, (ctx.size.y + m - 1) / m};
@@ -322,7 +323,9 @@ void IirTechnique::renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>
     auto scope = ctx.timers.scope("sm-rendering");
     m_mapsRenderedLastFrame = static_cast<uint32_t>(slots.size());
     ctx.counters["vplShadowMaps"] = static_cast<double>(slots.size());
+    m_mapQueries = !slots.empty();
     if (slots.empty()) return;
+    glBeginQuery(GL_SAMPLES_PASSED, m_mapSamples.id());
     const float offset = kSurfaceOffsetInDiagonals * m_sceneDiagonal;
     const float far = kShadowFarInDiagonals * m_sceneDiagonal;
     glEnable(GL_DEPTH_TEST);
@@ -358,7 +361,15 @@ void IirTechnique::renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>
         glClearNamedFramebufferfv(m_shadowFbo.id(), GL_DEPTH, 0, &one);
         ctx.drawer.draw(view, render::DrawFilter::Static);
     }
+    glEndQuery(GL_SAMPLES_PASSED);
     glDisable(GL_CLIP_DISTANCE0);
+}
+
+void IirTechnique::collectCounters(Counters& out) {
+    if (!m_mapQueries) return;
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(m_mapSamples.id(), GL_QUERY_RESULT, &samples);
+    out["vplMapSamples"] = static_cast<double>(samples);
 }
 
 void IirTechnique::uploadVpls() {
@@ -400,6 +411,7 @@ void IirTechnique::uploadVpls() {
 }
 
 void IirTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
+    m_mapQueries = false;
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     if (!m_primary.supported) {
         ctx.counters["iirUnsupportedLight"] = 1.0;

@@ -28,6 +28,9 @@ public:
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
+    // vplMapSamples: depth samples that passed over this frame's paraboloid maps (a query read after the
+    // frame is queued): the fragment work behind a map's cost (docs/techniques/iir.md, R1).
+    void collectCounters(Counters& out) override;
 
     // For tests and benchmarks: the distribution, the flux each sample carries this frame (W per
     // channel, indexed by slot) and the primary light's flux.
@@ -88,6 +91,8 @@ private:
     float m_sceneDiagonal = 1.0f;
     glm::ivec2 m_tileSize{1};
     uint32_t m_mapsRenderedLastFrame = 0;
+    gl::Query m_mapSamples;     // GL_SAMPLES_PASSED over the frame's maps
+    bool m_mapQueries = false;  // this frame's maps were queried
 
     gl::Program m_paraboloid, m_split, m_accumulate, m_combine, m_filter;
     gl::Texture m_shadowMaps;  // GL_DEPTH_COMPONENT16 2D array, one layer per slot
