@@ -14,18 +14,9 @@
 // Output: destination list (BINDING_SSBO_TECH2), the destination side's counts and dispatch groups.
 #include "techniques/multires_splat/refine.glsl"
 layout(local_size_x = 64) in;
-struct DrawCommand {
-    uint count;
-    uint instanceCount;
-    uint first;
-    uint baseInstance;
-};
 layout(std430, binding = BINDING_SSBO_TECH1) readonly buffer SourceBlock { ivec4 u_source[]; };
 layout(std430, binding = BINDING_SSBO_TECH2) writeonly buffer DestinationBlock { ivec4 u_destination[]; };
-layout(std430, binding = BINDING_SSBO_TECH3) buffer ControlBlock {
-    uvec4 u_groups[2];
-    DrawCommand u_commands[];  // [side * u_regions + region]
-};
+#include "techniques/multires_splat/refine_control.glsl"
 uniform bool u_initial;
 uniform ivec2 u_coarsestSize;
 uniform int u_coarsest;

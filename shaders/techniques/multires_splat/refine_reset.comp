@@ -4,16 +4,7 @@
 // and the next dispatch's groups (0 x regions x 1, grown by refine.comp).
 // Host uniforms: u_side, u_regions, u_regionStride, u_instances. Output: BINDING_SSBO_TECH3.
 layout(local_size_x = 64) in;
-struct DrawCommand {
-    uint count;
-    uint instanceCount;
-    uint first;
-    uint baseInstance;
-};
-layout(std430, binding = BINDING_SSBO_TECH3) buffer ControlBlock {
-    uvec4 u_groups[2];
-    DrawCommand u_commands[];
-};
+#include "techniques/multires_splat/refine_control.glsl"
 uniform int u_side;
 uniform int u_regions;
 uniform uint u_regionStride;
