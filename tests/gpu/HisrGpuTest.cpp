@@ -18,13 +18,6 @@ class HisrGpuTest : public gputest::GpuTest {};
 
 namespace {
 
-std::vector<glm::vec4> readLevel(const gl::Texture& texture, int level, glm::ivec2 size) {
-    std::vector<glm::vec4> texels(static_cast<size_t>(size.x) * size.y);
-    glGetTextureImage(texture.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
-                      texels.data());
-    return texels;
-}
-
 // hisr/gather.glsl's walk of one cell, on the CPU: Eq. 4.8 with T_l = 2 (1 - tau) / (3 tau res_l^2) at
 // each level l of the tree, the accepted nodes gathered with the disk-to-point form factor (vpl.glsl).
 glm::vec3 walkTree(const std::vector<glm::vec4>& tree, const std::vector<int>& offsets, const std::vector<int>& sides,

@@ -17,13 +17,6 @@ namespace {
 
 class IsrGpuTest : public gputest::GpuTest {};
 
-std::vector<glm::vec4> readLevel(const gl::Texture& texture, int level, glm::ivec2 size) {
-    std::vector<glm::vec4> texels(static_cast<size_t>(size.x) * size.y);
-    glGetTextureImage(texture.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
-                      texels.data());
-    return texels;
-}
-
 }  // namespace
 
 // gatherPass=compute (the cell list and a compute dispatch, StencilledGather.h) against the thesis's
@@ -201,10 +194,7 @@ TEST_F(IsrGpuTest, LightClustersConserveTheRsmFlux) {
         const int top = light.levels() - 1;
         const glm::ivec2 topSize = light.levelSize(top);
         glm::dvec3 rsmFlux(0.0);
-        std::vector<glm::vec4> texels(static_cast<size_t>(topSize.x) * topSize.y * light.layers());  // every layer
-        glGetTextureImage(light.flux().id(), top, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
-                          texels.data());
-        for (const glm::vec4& f : texels) rsmFlux += glm::dvec3(f);
+        for (const glm::vec4& f : readLevel(light.flux(), top, topSize, light.layers())) rsmFlux += glm::dvec3(f);
         uint32_t count = 0;
         isr.clusterCount().download(0, sizeof(count), &count);
         ASSERT_GT(count, 0u);

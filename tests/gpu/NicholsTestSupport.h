@@ -18,6 +18,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace bounce::nicholstest {
 
@@ -25,6 +26,14 @@ inline render::RenderSettings smallRenderSettings() {
     render::RenderSettings s;
     s.shadowMapSize = 256;  // llvmpipe: small maps keep each test to seconds
     return s;
+}
+
+// Level `level` of an RGBA texture (every layer of an array texture: `layers` x size texels), as floats.
+inline std::vector<glm::vec4> readLevel(const gl::Texture& texture, int level, glm::ivec2 size, int layers = 1) {
+    std::vector<glm::vec4> texels(static_cast<size_t>(size.x) * size.y * layers);
+    glGetTextureImage(texture.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
+                      texels.data());
+    return texels;
 }
 
 inline std::unique_ptr<Pipeline> makePipeline(const Scene& scene, const std::string& technique,
