@@ -307,8 +307,10 @@ def nichols_table(rec, path):
     lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); "
              f"`{rec['command']}`: `cornell-box` unless named, RSM 256², 256 VPLs; each side one `bounce render --frames "
              f"{rec['frames']}` with `renderer.timing=finish` (wall clock between glFinish calls at every pass boundary), the "
-             "second frame measured; sides interleaved (A B A B …); ratio per repetition, median (min–max, n).", "",
-             "| result | measured | thesis |", "|---|---|---|",
+             "second frame measured; sides interleaved (A B A B …); ratio per repetition, median (min–max, n)."
+             + (" `multires-splat` is the thesis's: point splats and geometry-shader refinement "
+                "(`splatPrimitive=points refinePass=geometry`, not bounce's defaults)." if "refinePass=geometry" in json.dumps(rec) else ""),
+             "", "| result | measured | thesis |", "|---|---|---|",
              f"| R1 frame, `multires-splat` / `isr` (regular VPLs), {r1['size']}² | {ratio_cell(r1['frameRatio'])} | 5–10× |",
              f"| R1 light stage, (refine + splat) / (stencil set-up + gather), {r1['size']}² | {ratio_cell(r1['lightRatio'])} | "
              "18–20× (splat vs gather alone); Table 4.1's refine + splat vs stencil + gather: 14.7–18× |"]
