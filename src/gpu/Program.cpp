@@ -188,6 +188,13 @@ void Program::set(std::string_view n, const glm::mat4& v) {
     glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));
 }
 
+void Program::set(std::string_view n, const std::vector<int>& v) {
+    glProgramUniform1iv(id(), location(n), static_cast<GLsizei>(v.size()), v.data());
+}
+void Program::set(std::string_view n, const std::vector<glm::ivec2>& v) {
+    glProgramUniform2iv(id(), location(n), static_cast<GLsizei>(v.size()), glm::value_ptr(v.front()));
+}
+
 void Program::dispatch(int sx, int sy, int sz, int lx, int ly, int lz) {
     auto groups = [](int size, int local) { return static_cast<GLuint>((size + local - 1) / local); };
     glDispatchCompute(groups(sx, lx), groups(sy, ly), groups(sz, lz));

@@ -43,6 +43,9 @@ public:
     void set(std::string_view name, const glm::vec4& v);
     void set(std::string_view name, const glm::ivec2& v);
     void set(std::string_view name, const glm::mat4& v);
+    // A uniform array from its element 0 (GLSL `uniform int name[N]` / `ivec2 name[N]`; at most N values).
+    void set(std::string_view name, const std::vector<int>& v);
+    void set(std::string_view name, const std::vector<glm::ivec2>& v);
 
     // Compute dispatch helper: groups = ceil(size / localSize).
     static void dispatch(int sizeX, int sizeY, int sizeZ, int localX, int localY = 1, int localZ = 1);

@@ -115,8 +115,8 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         std::vector<int> sides(kMaxTreeLevels, 1);
         for (int k = 0; k <= top; ++k) sides[static_cast<size_t>(k)] = m_light->levelSize(k).x;
         m_gather.set("u_tau", m_tau);
-        glProgramUniform1iv(m_gather.id(), glGetUniformLocation(m_gather.id(), "u_levelOffset"), kMaxTreeLevels, m_treeOffsets.data());
-        glProgramUniform1iv(m_gather.id(), glGetUniformLocation(m_gather.id(), "u_levelSide"), kMaxTreeLevels, sides.data());
+        m_gather.set("u_levelOffset", m_treeOffsets);
+        m_gather.set("u_levelSide", sides);
         m_visibility->setUniforms(m_gather);
         // Draws of as many roots as fit the shader loop budget (gpu/ShaderLimits.h), so deep trees are
         // walked whole on llvmpipe too.

@@ -121,10 +121,7 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             m_count.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
             m_clusters.set("u_finest", finest);
             m_clusters.set("u_coarsest", m_light->levels() - 1);
-            std::vector<glm::ivec2> sizes(kMaxClusterLevels, glm::ivec2(0));
-            BOUNCE_CHECK(m_light->levels() <= kMaxClusterLevels, "isr's light pyramid has at most {} levels", kMaxClusterLevels);
-            for (int k = 0; k < m_light->levels(); ++k) sizes[static_cast<size_t>(k)] = m_light->levelSize(k);
-            glProgramUniform2iv(m_clusters.id(), glGetUniformLocation(m_clusters.id(), "u_levelSize"), kMaxClusterLevels, &sizes[0].x);
+            m_clusters.set("u_levelSize", m_light->levelSizes(kMaxClusterLevels));
             m_clusters.use();
             glDispatchCompute(static_cast<GLuint>((fine.x + kLocalSize - 1) / kLocalSize),
                               static_cast<GLuint>((fine.y + kLocalSize - 1) / kLocalSize),

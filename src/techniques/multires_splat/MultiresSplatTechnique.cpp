@@ -139,11 +139,19 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
                                                      {GL_FRAGMENT_SHADER, "techniques/multires_splat/glossy_combine.frag"}}}));
     m_splatFbo = gl::Framebuffer::create("multiresSplat.splatFbo");
     m_glossyFbo = gl::Framebuffer::create("multiresSplat.glossyFbo");
-    BOUNCE_TRY(m_refine, gl::Program::build({"multiresSplat.refine",
-                                             {{GL_VERTEX_SHADER, "techniques/multires_splat/refine.vert"},
-                                              {GL_GEOMETRY_SHADER, "techniques/multires_splat/refine.geom"}},
-                                             {},
-                                             {"g_subsplat"}}));
+    // refinePass: only the selected pass's programs (each costs llvmpipe a compile).
+    if (m_refinePass == "compute") {
+        BOUNCE_TRY(m_refineCompute, gl::Program::build({"multiresSplat.refineCompute",
+                                                        {{GL_COMPUTE_SHADER, "techniques/multires_splat/refine.comp"}}}));
+        BOUNCE_TRY(m_refineReset, gl::Program::build({"multiresSplat.refineReset",
+                                                      {{GL_COMPUTE_SHADER, "techniques/multires_splat/refine_reset.comp"}}}));
+    } else {
+        BOUNCE_TRY(m_refine, gl::Program::build({"multiresSplat.refine",
+                                                 {{GL_VERTEX_SHADER, "techniques/multires_splat/refine.vert"},
+                                                  {GL_GEOMETRY_SHADER, "techniques/multires_splat/refine.geom"}},
+                                                 {},
+                                                 {"g_subsplat"}}));
+    }
     {
         // splatPrimitive=quads: a geometry shader turns each point into a one-texel quad (§3.4.1's
         // comparison; same fragments, same image).
@@ -167,10 +175,6 @@ Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
                                                         {GL_FRAGMENT_SHADER, "techniques/multires_splat/splat_stencil.frag"}},
                                                        nichols::VplWindow::withDefines(m_visibility->defines())}));
     }
-    BOUNCE_TRY(m_refineCompute, gl::Program::build({"multiresSplat.refineCompute",
-                                                    {{GL_COMPUTE_SHADER, "techniques/multires_splat/refine.comp"}}}));
-    BOUNCE_TRY(m_refineReset, gl::Program::build({"multiresSplat.refineReset",
-                                                  {{GL_COMPUTE_SHADER, "techniques/multires_splat/refine_reset.comp"}}}));
     m_feedback[0] = gl::TransformFeedback::create("multiresSplat.feedback0");
     m_feedback[1] = gl::TransformFeedback::create("multiresSplat.feedback1");
     m_levelCounts = gl::Buffer::create("multiresSplat.levelCounts", kMaxLevels * sizeof(uint32_t));
@@ -256,9 +260,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             ctx.gbuffer.bind();
             m_vpls->buffer().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             gl::Program& refine = computeRefine ? m_refineCompute : m_refine;
-            std::vector<glm::ivec2> sizes(kMaxLevels, glm::ivec2(0));
-            for (int k = 0; k < levels; ++k) sizes[static_cast<size_t>(k)] = m_eye->levelSize(k);
-            glProgramUniform2iv(refine.id(), glGetUniformLocation(refine.id(), "u_levelSize"), kMaxLevels, &sizes[0].x);
+            refine.set("u_levelSize", m_eye->levelSizes(kMaxLevels));
             refine.set("u_perVpl", perVpl ? 1 : 0);
             refine.set("u_relativeThreshold", m_illuminationContrast);
             refine.set("u_minDistance2", m_minDistance * m_minDistance);
@@ -352,7 +354,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             // splatPrimitive=stencil: the list's points only mark the stencil (splat.vert, one instance, so
             // its per-level subsplat counts are the list's); the VPLs are splatted below.
             gl::Program& points = m_primitive == "stencil" ? m_mark : m_splat;
-            glProgramUniform2iv(points.id(), glGetUniformLocation(points.id(), "u_origins"), kMaxLevels, &origins[0].x);
+            points.set("u_origins", origins);
             points.set("u_atlasSize", m_buffer->atlasSize());
             points.set("u_minDistance2", m_minDistance * m_minDistance);
             points.set("u_gbufferScale", m_eye->scale());

@@ -90,6 +90,13 @@ void MinMaxPyramid::allocate(glm::ivec2 size, int layers, int coarsestSize, bool
                  "pyramid level sizes follow GL mip sizes");
 }
 
+std::vector<glm::ivec2> MinMaxPyramid::levelSizes(int count) const {
+    BOUNCE_CHECK(m_levels <= count, "pyramid of {} levels, shader array of {}", m_levels, count);
+    std::vector<glm::ivec2> sizes(static_cast<size_t>(count), glm::ivec2(0));
+    for (int k = 0; k < m_levels; ++k) sizes[static_cast<size_t>(k)] = m_sizes[static_cast<size_t>(k)];
+    return sizes;
+}
+
 void MinMaxPyramid::buildEye(const render::GBuffer& gbuffer, int coarsestSize, const PyramidThresholds& t,
                              std::optional<float> curvatureThreshold, int scale) {
     BOUNCE_CHECK(scale >= 1 && (scale & (scale - 1)) == 0, "eye pyramid scale {} is a power of two", scale);

@@ -56,6 +56,10 @@ public:
     int layers() const { return m_layers; }
     int scale() const { return m_scale; }  // eye pyramid: G-buffer pixels per base texel side (1 = full size)
     glm::ivec2 levelSize(int level) const { return m_sizes[static_cast<size_t>(level)]; }
+    // Every level's size, padded with zeros to `count` entries: a shader's `uniform ivec2 name[count]`.
+    // Shaders whose level differs between invocations read sizes from it: textureSize with such a level
+    // returns the first SIMD lane's size on llvmpipe.
+    std::vector<glm::ivec2> levelSizes(int count) const;
     // GL_TEXTURE_2D_ARRAY mip chains (nearest sampling); see pyramid.glsl.
     const gl::Texture& geometry() const { return m_geometry; }
     const gl::Texture& normal() const { return m_normal; }

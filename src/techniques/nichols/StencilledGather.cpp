@@ -80,7 +80,7 @@ void StencilledGather::gather(gl::Program& program, int batches, const std::func
     }
     std::vector<glm::ivec2> origins(kMaxCellLevels, glm::ivec2(0));
     for (int k = 0; k < m_levels; ++k) origins[static_cast<size_t>(k)] = m_buffer->levelOrigin(k);
-    glProgramUniform2iv(program.id(), glGetUniformLocation(program.id(), "u_levelOrigins"), kMaxCellLevels, &origins[0].x);
+    program.set("u_levelOrigins", origins);
     m_cells.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
     m_buffer->atlas().bindImage(BINDING_IMG0, GL_READ_WRITE);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatch.id());
