@@ -118,6 +118,10 @@ Expected<ErrorMetrics> compareImages(const Image& test, const Image& reference, 
                            [](double x, double r) { return squared(x, r) / (r * r + kRelMseEpsilon); });
     m.mae = channelMean(test, reference, [](double x, double r) { return std::abs(x - r); });
     m.relRms = relativeRmsError(test, reference);
+    m.testMean = channelMean(test, test, [](double x, double) { return x; });
+    m.referenceMean = channelMean(reference, reference, [](double x, double) { return x; });
+    m.energy = m.referenceMean > 0.0 ? m.testMean / m.referenceMean
+                                     : (m.testMean == 0.0 ? 1.0 : std::numeric_limits<double>::infinity());
 
     const Image testDisplay = toDisplay(test, options.testToneMap);
     const Image referenceDisplay = toDisplay(reference, options.referenceToneMap);
@@ -161,6 +165,9 @@ nlohmann::json toJson(const ErrorMetrics& m) {
     j["ssim"] = m.ssim;
     j["flipLdr"] = m.flipLdr;
     j["flipHdr"] = m.flipHdr;
+    j["testMean"] = m.testMean;
+    j["referenceMean"] = m.referenceMean;
+    j["energy"] = std::isfinite(m.energy) ? nlohmann::json(m.energy) : nlohmann::json(nullptr);
     j["hdrFlipExposures"] = {{"startEv", m.hdrFlipExposures.startEv},
                              {"stopEv", m.hdrFlipExposures.stopEv},
                              {"count", m.hdrFlipExposures.count}};

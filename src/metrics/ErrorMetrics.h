@@ -49,6 +49,10 @@ struct ErrorMetrics {
     double flipLdr = 0.0; // mean LDR-FLIP of the display images
     double flipHdr = 0.0; // mean HDR-FLIP of the linear images
     HdrFlipExposures hdrFlipExposures;  // the bracket HDR-FLIP used (from the reference)
+    double testMean = 0.0;       // mean over pixels and channels of the test image, linear
+    double referenceMean = 0.0;  // the same of the reference
+    double energy = 0.0;         // testMean / referenceMean: the image's light relative to the reference's
+                                 // (+inf for a black reference and a test that is not, 1 for two black images)
 };
 
 // Per-pixel maps a caller may want alongside the pooled numbers (e.g. for a heat map).
