@@ -94,6 +94,10 @@ Expected<std::unique_ptr<Pipeline>> Pipeline::create(const Scene& scene, std::un
     BOUNCE_CHECK(p->m_composeFbo.complete(), "compose framebuffer");
     p->m_frameUbo = gl::Buffer::create("frame.uniforms", sizeof(gpu::FrameUniforms));
     p->m_technique = std::move(technique);
+    if (p->m_technique->bouncesLightsOnly() && scene.hasEmissiveMaterials())
+        return makeError("technique '{}': scene '{}' has emissive materials, whose light this technique does not bounce "
+                         "(its indirect light starts at the scene's lights only)",
+                         p->m_technique->name(), scene.name);
     SetupContext setup{scene, p->m_sceneGpu, size, p->m_settings};
     auto ok = p->m_technique->setup(setup);
     if (!ok.ok()) return makeError("technique '{}': {}", p->m_technique->name(), ok.error().message);

@@ -83,6 +83,10 @@ public:
     virtual void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) = 0;
     // True when renderIndirect also rewrites `ctx.direct` (it is then passed as writable).
     virtual bool ownsDirect() const { return false; }
+    // True for techniques whose indirect light starts at the scene's lights only (VPLs, photons,
+    // voxels injected from light sources): the light of emissive materials would be silently
+    // missing from their indirect output, so Pipeline::create refuses scenes that have any.
+    virtual bool bouncesLightsOnly() const { return false; }
     // Appends this technique's debug views (valid after setup; textures are owned by the technique).
     virtual void debugViews(std::vector<DebugView>& /*out*/) const {}
     // Reads the counters that live on the GPU (query results, atomic counts) into `out`, after the frame's

@@ -181,11 +181,12 @@ TEST_F(HisrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);
         ASSERT_TRUE(scene.ok()) << info.name;
+        if (scene->hasEmissiveMaterials()) {  // furnace: lit by emission only
+            expectRefusesEmissiveScene(*scene, "hisr");
+            continue;
+        }
         const Image indirect = renderIndirect(*scene, "hisr", {{"rsmSize", "32"}, {"maxDepth", "1"}}, 32);
         EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") {
-            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
-        }
     }
 }
 

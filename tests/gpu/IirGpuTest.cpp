@@ -232,6 +232,14 @@ TEST_F(IirGpuTest, RendersEveryBuiltinScene) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         const std::string& name = info.name;
         const Scene scene = load(name);
+        if (scene.hasEmissiveMaterials()) {
+            // furnace, lit by emission only: iir's VPLs come from the scene's lights, so it refuses
+            // the scene instead of silently dropping the emitted light (Technique::bouncesLightsOnly).
+            auto refused = Pipeline::create(scene, std::make_unique<IirTechnique>(), {16, 16}, render::RenderSettings{});
+            ASSERT_FALSE(refused.ok()) << name;
+            EXPECT_NE(refused.error().message.find("emissive materials"), std::string::npos) << refused.error().message;
+            continue;
+        }
         // 18 is not a multiple of the 4x4 tiling: the atlas has empty pixels at the tile ends.
         IirRun run = makeRun(scene, 18, {{"maxLights", "16"}});
         ASSERT_TRUE(run.pipeline) << name;
@@ -251,12 +259,6 @@ TEST_F(IirGpuTest, RendersEveryBuiltinScene) {
         }
         const double ratio = luminanceMean(indirect) / std::max(luminanceMean(direct), 1e-30);
         std::printf("iir %s: mean indirect / mean direct %.4f\n", name.c_str(), ratio);
-        if (scene.lights.empty()) {
-            // furnace: lit by emission only, no primary light: indirect is exactly 0 and says so.
-            EXPECT_EQ(luminanceMean(indirect), 0.0) << name;
-            EXPECT_EQ(stats.counters.count("iirUnsupportedLight"), 1u) << name;
-            continue;
-        }
         // A positive, bounded level, not just a finite image: one diffuse bounce off surfaces of
         // albedo <= 0.9 in a closed or half-open scene returns a fraction of the direct light, more
         // in scenes whose visible surfaces are mostly lit indirectly (the spot-lit Cornell boxes, whose

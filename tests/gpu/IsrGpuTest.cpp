@@ -164,11 +164,12 @@ TEST_F(IsrGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);
         ASSERT_TRUE(scene.ok()) << info.name;
+        if (scene->hasEmissiveMaterials()) {  // furnace: lit by emission only
+            expectRefusesEmissiveScene(*scene, "isr");
+            continue;
+        }
         const Image indirect = renderIndirect(*scene, "isr", {{"rsmSize", "32"}, {"lightFinest", "32"}}, 32);
         EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") {
-            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
-        }
     }
 }
 

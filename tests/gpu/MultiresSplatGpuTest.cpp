@@ -197,13 +197,14 @@ TEST_F(MultiresSplatGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);
         ASSERT_TRUE(scene.ok()) << info.name;
+        if (scene->hasEmissiveMaterials()) {  // furnace: lit by emission only
+            expectRefusesEmissiveScene(*scene, "multires-splat");
+            continue;
+        }
         for (const char* mode : {"shared", "per-vpl"}) {
             const Image indirect = renderIndirect(
                 *scene, "multires-splat", {{"rsmSize", "32"}, {"vplGrid", "8"}, {"refinement", mode}}, 32);
             EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name << " " << mode;
-            if (info.name == "furnace") {
-                EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
-            }
         }
     }
 }

@@ -47,6 +47,21 @@ inline std::unique_ptr<Pipeline> makePipeline(const Scene& scene, const std::str
     return std::move(*p);
 }
 
+// The one-line error of a pipeline the technique refuses to set up ("" when it accepts the scene).
+inline std::string setupRefusal(const Scene& scene, const std::string& technique, int size = 16) {
+    auto t = createTechnique(technique);
+    EXPECT_TRUE(t.ok());
+    auto p = Pipeline::create(scene, std::move(*t), {size, size}, smallRenderSettings());
+    return p.ok() ? std::string() : p.error().message;
+}
+
+// Techniques whose indirect light starts at the scene's lights (VPLs, photons, injected voxels) refuse
+// scenes with emissive materials, whose light they would silently drop (Technique::bouncesLightsOnly).
+inline void expectRefusesEmissiveScene(const Scene& scene, const std::string& technique) {
+    const std::string error = setupRefusal(scene, technique);
+    EXPECT_NE(error.find("emissive materials"), std::string::npos) << technique << " on " << scene.name << ": '" << error << "'";
+}
+
 inline Image renderIndirect(const Scene& scene, const std::string& technique,
                             const std::map<std::string, std::string>& settings, int size) {
     auto p = makePipeline(scene, technique, settings, size);

@@ -133,11 +133,12 @@ TEST_F(RsmGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);
         ASSERT_TRUE(scene.ok()) << info.name;
+        if (scene->hasEmissiveMaterials()) {  // furnace: lit by emission only
+            expectRefusesEmissiveScene(*scene, "rsm");
+            continue;
+        }
         const Image indirect = renderIndirect(*scene, "rsm", {{"rsmSize", "32"}, {"vplGrid", "8"}}, 16);
         EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") {
-            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
-        }
     }
 }
 

@@ -63,10 +63,11 @@ TEST_F(RsmSplatGpuTest, EveryBuiltinSceneRendersFiniteIndirectLight) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         auto scene = loadScene(info.name);
         ASSERT_TRUE(scene.ok()) << info.name;
+        if (scene->hasEmissiveMaterials()) {  // furnace: lit by emission only
+            expectRefusesEmissiveScene(*scene, "rsm-splat");
+            continue;
+        }
         const Image indirect = renderIndirect(*scene, "rsm-splat", {{"rsmSize", "32"}, {"vplGrid", "8"}, {"mode", "matched"}}, 16);
         EXPECT_TRUE(finiteAndNonNegative(indirect)) << info.name;
-        if (info.name == "furnace") {
-            EXPECT_EQ(totalRadiance(indirect), 0.0) << "no light, no indirect light";
-        }
     }
 }

@@ -13,6 +13,7 @@ namespace bounce {
 class HisrTechnique final : public Technique {
 public:
     std::string_view name() const override { return "hisr"; }
+    bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;

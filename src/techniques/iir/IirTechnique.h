@@ -25,6 +25,7 @@ struct IirPrimaryLight {
 class IirTechnique final : public Technique {
 public:
     std::string_view name() const override { return "iir"; }
+    bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
