@@ -67,7 +67,7 @@ double relMse(const Image& test, const Image& reference) {
 }  // namespace
 
 TEST_F(VctGpuTest, EveryVoxelizerMatchesTheCpuOverlapTest) {
-    for (const char* name : {"cornell-box", "cornell-box-area", "cornell-box-dynamic", "furnace", "two-rooms", "atrium", "area-screen"}) {
+    for (const char* name : {"cornell-box", "cornell-box-area", "cornell-box-dynamic", "indirect-light", "two-rooms", "atrium", "area-screen"}) {
         auto scene = loadScene(name);
         ASSERT_TRUE(scene.ok());
         // A grid box offset by a fraction of a voxel from the scene's round coordinates: walls lying
@@ -331,9 +331,11 @@ TEST_F(VctGpuTest, SphereWithACentralPointLightGivesTheAnalyticBounce) {
     auto at = [&](int i, int j) { return static_cast<uint32_t>(i + (kU + 1) * j); };
     for (int j = 0; j < kV; ++j)
         for (int i = 0; i < kU; ++i) {
-            // Wound to face the centre; the pole rows keep only their non-degenerate triangle.
-            if (j > 0) sphere.indices.insert(sphere.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
-            if (j < kV - 1) sphere.indices.insert(sphere.indices.end(), {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+            // Wound counter-clockwise seen from the centre, as the normals face (the G-buffer turns the
+            // normal of a two-sided surface's back face around, so a mesh wound against its normals
+            // would send the cones outwards); the pole rows keep only their non-degenerate triangle.
+            if (j > 0) sphere.indices.insert(sphere.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)});
+            if (j < kV - 1) sphere.indices.insert(sphere.indices.end(), {at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)});
         }
     s.meshes.push_back(sphere);
     Material m;
@@ -362,15 +364,16 @@ TEST_F(VctGpuTest, SphereWithACentralPointLightGivesTheAnalyticBounce) {
         got[storage] = meanOf(img) / expected;
         RecordProperty(std::string(storage) + "_ratio", std::to_string(got[storage]));
     }
-    // Measured ratios on llvmpipe at 64^3: iso 0.32, sh-f32 0.21, aniso within 15 % (docs/techniques/
-    // vct.md). The anisotropic volume keeps the sphere's wall opaque along each cone; iso and SH
-    // average the wall's opacity with the empty inside over the mip levels (thesis 5.3.1: "averaging
-    // opacity can turn opaque walls transparent"), so a cone passes through the coarse wall voxels
-    // and keeps part of the light only. Their bounds are 0.8x the measured ratio and no energy gain.
-    EXPECT_NEAR(got["aniso"], 1.0, 0.15);
-    EXPECT_GT(got["iso"], 0.25);
+    // Measured ratios on llvmpipe at 64^3 (bench/results/vct-tests-*.json): iso 0.92, aniso 0.85,
+    // sh-f32 0.85. The shortfall is light that cones carry through the shell where it is crossed
+    // obliquely at a coarse level (docs/techniques/vct.md, "Where the light goes"). Bounds: 0.1 under
+    // each measurement (llvmpipe and GPU filtering may differ by a few per cent) and no gain: a halved
+    // injection (0.46) or a missing opacity (cones through every wall) fails them.
+    EXPECT_GT(got["iso"], 0.82);
     EXPECT_LT(got["iso"], 1.05);
-    EXPECT_GT(got["sh-f32"], 0.16);
+    EXPECT_GT(got["aniso"], 0.75);
+    EXPECT_LT(got["aniso"], 1.05);
+    EXPECT_GT(got["sh-f32"], 0.75);
     EXPECT_LT(got["sh-f32"], 1.05);
 }
 

@@ -563,9 +563,10 @@ TEST(VctShMip, IdenticalIsotropicChildrenKeepTheirRadiance) {
     }
 }
 
-// Spec 2.9: one unit-radiance child in the (-,-,-) corner gives, before the division by pi,
-// pi +- D/2 along +-X with D = Omega_near / sqrt(3) + 5 Omega_far / sqrt(11): 4.85 vs 1.43. The
-// lobe leans towards the parent centre, +(1, 1, 1).
+// Spec 2.9: one unit-radiance child in the (-,-,-) corner gives, averaged over the active children
+// (the thesis) and before the division by pi, pi +- D/2 along +-X with D = Omega_near / sqrt(3) +
+// 5 Omega_far / sqrt(11): 4.85 vs 1.43. Premultiplied (the GPU's convention) the parent is an eighth of
+// that, its opacity being 1/8. The lobe leans towards the parent centre, +(1, 1, 1).
 TEST(VctShMip, SingleCornerChildLeansTowardsParentCentre) {
     std::array<std::optional<ShRgb>, 8> children;
     children[0] = shProjectConstantRgb(glm::vec3(1.0f));
@@ -575,12 +576,12 @@ TEST(VctShMip, SingleCornerChildLeansTowardsParentCentre) {
     for (int axis = 0; axis < 3; ++axis) {
         glm::vec3 d(0.0f);
         d[axis] = 1.0f;
-        EXPECT_NEAR(shEvaluateRgb(literal, d).r, kPi + D / 2, 1e-5);
-        EXPECT_NEAR(shEvaluateRgb(literal, -d).r, kPi - D / 2, 1e-5);
-        EXPECT_NEAR(shEvaluateRgb(normalised, d).g, (kPi + D / 2) / kPi, 1e-5);
+        EXPECT_NEAR(8.0 * shEvaluateRgb(literal, d).r, kPi + D / 2, 1e-5);
+        EXPECT_NEAR(8.0 * shEvaluateRgb(literal, -d).r, kPi - D / 2, 1e-5);
+        EXPECT_NEAR(8.0 * shEvaluateRgb(normalised, d).g, (kPi + D / 2) / kPi, 1e-5);
     }
-    EXPECT_NEAR(shEvaluateRgb(literal, {1, 0, 0}).b, 4.85, 0.005);  // the spec's rounded values
-    EXPECT_NEAR(shEvaluateRgb(literal, {-1, 0, 0}).b, 1.43, 0.005);
+    EXPECT_NEAR(8.0 * shEvaluateRgb(literal, {1, 0, 0}).b, 4.85, 0.005);  // the spec's rounded values
+    EXPECT_NEAR(8.0 * shEvaluateRgb(literal, {-1, 0, 0}).b, 1.43, 0.005);
     glm::vec3 towardsCentre = glm::normalize(glm::vec3(1.0f));
     for (glm::vec3 d : testDirections()) EXPECT_LE(shEvaluateRgb(normalised, d).r, shEvaluateRgb(normalised, towardsCentre).r + kFloatTol);
 }
@@ -656,12 +657,13 @@ TEST(VctMip, IsotropicOpacityWeightedAverage) {
     std::array<glm::vec4, 8> children;
     children.fill(glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
     expectVec4Near(isotropicMipParent(children), glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
-    // Half-empty block: the colour of the occupied half, half the opacity.
+    // Half-empty block: the colour of the occupied half at half the opacity, premultiplied.
     children = {kRed, kRed, kGreen, kGreen, kEmpty, kEmpty, kEmpty, kEmpty};
-    expectVec4Near(isotropicMipParent(children), glm::vec4(0.5f, 0.5f, 0.0f, 0.5f));
-    // Opacity weights the colour: 1 * red + 0.25 * blue over 1.25.
-    children = {kRed, glm::vec4(0, 0, 1, 0.25f), kEmpty, kEmpty, kEmpty, kEmpty, kEmpty, kEmpty};
-    expectVec4Near(isotropicMipParent(children), glm::vec4(0.8f, 0.0f, 0.2f, 1.25f / 8.0f));
+    expectVec4Near(isotropicMipParent(children), 0.5f * glm::vec4(0.5f, 0.5f, 0.0f, 1.0f));
+    // Opacity weights the colour: 1 * red + 0.25 * blue (premultiplied (0, 0, 0.25, 0.25)), i.e. the
+    // straight colour (0.8, 0, 0.2) at opacity 1.25 / 8.
+    children = {kRed, glm::vec4(0, 0, 0.25f, 0.25f), kEmpty, kEmpty, kEmpty, kEmpty, kEmpty, kEmpty};
+    expectVec4Near(isotropicMipParent(children), (1.25f / 8.0f) * glm::vec4(0.8f, 0.0f, 0.2f, 1.0f));
     children.fill(kEmpty);
     expectVec4Near(isotropicMipParent(children), kEmpty);
 }
@@ -677,19 +679,20 @@ TEST(VctMip, AnisotropicFrontLayerHidesBackLayer) {
     expectVec4Near(p[1], kGreen);  // -X
     for (int face = 2; face < 6; ++face) expectVec4Near(p[size_t(face)], glm::vec4(0.5f, 0.5f, 0.0f, 1.0f));
 
-    // A half-transparent red front: 0.5 red + 0.5 * green behind it.
-    for (int c = 0; c < 8; ++c) children[size_t(c)] = anisoFromIsotropic((c & 1) ? kGreen : glm::vec4(1, 0, 0, 0.5f));
+    // A half-transparent red front (premultiplied (0.5, 0, 0, 0.5)): 0.5 red + 0.5 * green behind it.
+    for (int c = 0; c < 8; ++c) children[size_t(c)] = anisoFromIsotropic((c & 1) ? kGreen : glm::vec4(0.5f, 0, 0, 0.5f));
     p = anisotropicMipParent(children);
     expectVec4Near(p[0], glm::vec4(0.5f, 0.5f, 0.0f, 1.0f));
     expectVec4Near(p[1], kGreen);
 
     // Only the -x half occupied: opaque along +-X (every pair has one opaque child), half-opaque
-    // along +-Y, +-Z (two of the four pairs are empty); the colour is red everywhere.
+    // along +-Y, +-Z (two of the four pairs are empty); the colour is red everywhere (premultiplied:
+    // half red at half opacity).
     for (int c = 0; c < 8; ++c) children[size_t(c)] = anisoFromIsotropic((c & 1) ? kEmpty : kRed);
     p = anisotropicMipParent(children);
     expectVec4Near(p[0], kRed);
     expectVec4Near(p[1], kRed);
-    for (int face = 2; face < 6; ++face) expectVec4Near(p[size_t(face)], glm::vec4(1.0f, 0.0f, 0.0f, 0.5f));
+    for (int face = 2; face < 6; ++face) expectVec4Near(p[size_t(face)], glm::vec4(0.5f, 0.0f, 0.0f, 0.5f));
 
     // The near child of each face: the one a ray along the face direction meets first.
     EXPECT_EQ(anisoNearChild(0, 6), 6);  // +X: bit 0 clear
@@ -747,7 +750,7 @@ TEST(VctShMip, ChildMatricesEqualTheSixFaceSum) {
     for (int i = 0; i < 8; ++i) {
         std::array<std::optional<bounce::vct::ShRgb>, 8> one;
         one[static_cast<size_t>(i)] = bounce::vct::ShRgb{v, v, v};
-        const glm::vec4 literal = bounce::vct::shMipParent(one, false).r;
+        const glm::vec4 literal = 8.0f * bounce::vct::shMipParent(one, false).r;  // the parent is the eighth
         const glm::vec4 viaMatrix = bounce::vct::shMipChildMatrix(i) * v;
         for (int k = 0; k < 4; ++k) EXPECT_NEAR(viaMatrix[k], literal[k], 1e-5f * (1.0f + std::abs(literal[k]))) << i << " " << k;
     }

@@ -33,6 +33,6 @@ void main() {
     }
     float sinHalf = sin(0.5 * u_vct.cone2.w);
     vec4 c = coneTrace(origin, s.normal, dir, sinHalf / (1.0 - sinHalf), dist, 2.0 * dist + 1.0, voxSize, N,
-                       u_vct.cone.x, u_vct.cone.y, sinHalf, false);
+                       u_vct.cone.x, u_vct.cone.y, sinHalf, false, u_vct.cone.x * voxSize, dot(dir, s.normal));
     o_radiance = vec4(radiance * c.a, 1.0);
 }

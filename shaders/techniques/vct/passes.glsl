@@ -8,10 +8,14 @@
 //              (mutex volume, imageAtomicCompSwap) and appends it to the next list.
 //   VCT_PASS 3 anisotropic mip (5.3.2, after Crassin et al. 2011): per face direction, the four child
 //              pairs along it composited front to back, then averaged.
-//   VCT_PASS 4 SH mip of colour channel u_channel (5.3.3, Eq. 5.9): each active child projected on
-//              the six faces of its parent (solid angles 3.114 / 1.075 sr), re-emitted as clamped
-//              cosine lobes, summed, averaged over the active children and divided by pi (the
-//              normalisation the thesis leaves out: without it each level multiplies radiance by pi).
+//   VCT_PASS 4 SH mip of colour channel u_channel (5.3.3, Eq. 5.9): each child projected on the six
+//              faces of its parent (solid angles 3.114 / 1.075 sr), re-emitted as clamped cosine lobes,
+//              summed, divided by pi (the normalisation the thesis leaves out: without it each level
+//              multiplies radiance by pi) and by 8. The thesis divides by the number of active children
+//              (straight colour, its sampler then reads opacity from the alpha volume); here the
+//              coefficients are premultiplied by opacity like the isotropic colours, so that filtering
+//              between occupied and empty voxels does not darken twice (docs/techniques/vct.md). Level 0
+//              (opacity 0 or 1) is the same in both conventions.
 // The voxel comes from voxelCoordinate() (dense: the invocation; sparse: the active list).
 #include "techniques/vct/volume.glsl"
 #include "techniques/vct/sh.glsl"
@@ -174,14 +178,9 @@ uniform mat4 u_shMip[8];
 
 void processVoxel(ivec3 q) {
     vec4 sum = vec4(0.0);
-    int activeChildren = 0;
-    for (int i = 0; i < 8; ++i) {
-        ivec3 c = childOf(q, i);
-        if (texelFetch(s_alpha, c, u_level - 1).a <= 0.0) continue;
-        ++activeChildren;
-        sum += u_shMip[i] * childSh(c);
-    }
-    vec4 parent = activeChildren > 0 ? sum / (float(activeChildren) * kPi) : vec4(0.0);
+    for (int i = 0; i < 8; ++i) sum += u_shMip[i] * childSh(childOf(q, i));  // empty children are 0
+    // Premultiplied: sum_i alpha_i P_i / 8, the children's coefficients already carrying alpha_i.
+    vec4 parent = sum / (8.0 * kPi);
 #if VCT_STORAGE == VCT_STORAGE_SH_F32
     imageStore(i_c0, q, vec4(parent.x));
     imageStore(i_c1, q, vec4(parent.y));

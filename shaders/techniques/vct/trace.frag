@@ -40,7 +40,9 @@ vec4 debugMarch(vec3 eyeTex, vec3 dirTex, int level, bool radiance) {
         vec4 s = textureLod(s_alpha, p, float(level));
         if (s.a > 0.5) {
             if (!radiance) return vec4(1.0);
-            return vec4(voxelFetch(p, float(level), -dirTex).rgb, 1.0);
+            // The radiance seen looking along the ray (the cone direction of voxelFetch), straight colour.
+            vec4 v = voxelFetch(p, float(level), dirTex);
+            return vec4(v.rgb / max(v.a, 1e-6), 1.0);
         }
     }
     return vec4(0.0);
@@ -89,7 +91,7 @@ void main() {
         vec3 dir = normalize(tx * d.x + n * d.y + tz * d.z);
         vec4 c = specialised ? coneTrace60(origin, dir, maxDist, aoDist, voxSize)
                              : coneTrace(origin, n, dir, kConeRatio60, maxDist, aoDist, voxSize, N, u_vct.cone.x,
-                                         u_vct.cone.y, kSinHalf60, true);
+                                         u_vct.cone.y, kSinHalf60, true, u_vct.cone.x * voxSize, dot(dir, n));
         diffuse += kConeWeights[k] * c.rgb;
         accessibility += kConeWeights[k] * c.a;
     }
@@ -108,7 +110,7 @@ void main() {
     float aperture = clamp(2.0 * atan(u_vct.cone2.y * alpha), kMinSpecularAperture, 2.0 * 1.0471976);
     float sinHalf = sin(0.5 * aperture);
     vec4 c = coneTrace(x, n, r, sinHalf / (1.0 - sinHalf), maxDist, 0.0, voxSize, N, u_vct.cone.x, u_vct.cone.y, sinHalf,
-                       false);
+                       false, 0.0, dot(r, n));
     float cosV = clamp(dot(n, v), 0.0, 1.0);
     vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - cosV, 5.0);
     o_radiance = vec4(fresnel * c.rgb, 1.0);

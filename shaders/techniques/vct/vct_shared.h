@@ -37,11 +37,14 @@ struct VctUniforms {
     vec4 cone2;     // x: specular cone on, y: specular aperture scale, z: diffuse tracer (0 generic,
                     // 1 60-degree), w: shadow cone aperture (radians)
     vec4 debug;     // x: view (VCT_DEBUG_*), y: level, z: slice (0..1), w: 1 = write active-voxel lists
+    vec4 trace;     // x: 1 = tangent cap of the generic tracer's sample levels (cone.glsl), y: 1 = opacity
+                    // correction of iso/SH samples for the step length, z: |v| of Eq. 6.2 in voxels
+                    // (diagonal or side), w: 1 = anisotropic opacity blended as transmittance (cone.glsl)
     LightGpu lights[VCT_MAX_LIGHTS];
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(VctUniforms) == 128 + 6 * 16 + VCT_MAX_LIGHTS * sizeof(LightGpu));
+static_assert(sizeof(VctUniforms) == 128 + 7 * 16 + VCT_MAX_LIGHTS * sizeof(LightGpu));
 }  // namespace bounce::gpu
 #endif
 

@@ -56,7 +56,7 @@ void main() {
     if (u_vct.range.w < 0.5) {
         uint material = u_objects[gf_object].info.x;
         bool twoSided = u_materials[material].params.w > 0.5;
-        radiance = injectedRadiance(gf_posWorld, normalize(gf_normal + 1e-12), materialAlbedo(material, gf_uv), twoSided);
+        radiance = injectedRadiance(gf_posWorld, normalize(gf_normal + 1e-12), (1.0 - u_materials[material].params.y) * materialAlbedo(material, gf_uv), twoSided);
     }
     for (int z = zr.x; z <= zr.y; ++z) {
         if (!voxTestYZZX(t, vec3(p, z))) continue;

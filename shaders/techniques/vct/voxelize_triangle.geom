@@ -77,7 +77,7 @@ void main() {
                     vec3 xw = w.x * vg_posWorld[0] + w.y * vg_posWorld[1] + w.z * vg_posWorld[2];
                     vec3 nw = normalize(w.x * vg_normal[0] + w.y * vg_normal[1] + w.z * vg_normal[2] + 1e-12);
                     vec2 uv = w.x * vg_uv[0] + w.y * vg_uv[1] + w.z * vg_uv[2];
-                    radiance = injectedRadiance(xw, nw, materialAlbedo(material, uv), twoSided);
+                    radiance = injectedRadiance(xw, nw, (1.0 - u_materials[material].params.y) * materialAlbedo(material, uv), twoSided);
                     shaded = true;
                 }
                 writeVoxel(voxUnswizzle(ivec3(x, y, z), t.axis), radiance);

@@ -79,10 +79,8 @@ ShRgb shProjectConstantRgb(glm::vec3 radiance) {
 
 ShRgb shMipParent(const std::array<std::optional<ShRgb>, 8>& children, bool divideByPi) {
     ShRgb sum;
-    int active = 0;
     for (int i = 0; i < 8; ++i) {
         if (!children[i]) continue;
-        ++active;
         const ShRgb& v = *children[i];
         for (int f = 0; f < 6; ++f) {
             glm::vec3 d = childFaceDirection(i, f);
@@ -94,8 +92,7 @@ ShRgb shMipParent(const std::array<std::optional<ShRgb>, 8>& children, bool divi
             sum.b += omega * glm::dot(y, v.b) * lobe;
         }
     }
-    if (active == 0) return ShRgb{};
-    float scale = 1.0f / float(active);
+    float scale = 1.0f / 8.0f;  // premultiplied: empty children count as zero
     if (divideByPi) scale /= glm::pi<float>();
     return ShRgb{sum.r * scale, sum.g * scale, sum.b * scale};
 }

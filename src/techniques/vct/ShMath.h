@@ -55,12 +55,14 @@ struct ShRgb {
 glm::vec3 shEvaluateRgb(const ShRgb& c, glm::vec3 d);
 ShRgb shProjectConstantRgb(glm::vec3 radiance);
 
-// Eq. 5.9: each active child's function is projected onto the parent's 6 faces (flux through face f
+// Eq. 5.9: each child's function is projected onto the parent's 6 faces (flux through face f
 // ~ Omega_f * V_child(d_f)), each face re-emits as a clamped-cosine lobe around d_f, the lobes are
-// summed and the sum is averaged over the active children (empty optionals are inactive children;
-// none active gives zero). With divideByPi (default) the result is divided by pi, the clamped-cosine
-// integral, which makes 8 identical isotropic children of radiance L give a parent of radiance L;
-// without it (the literal Eq. 5.9) every level multiplies radiance by pi (spec 2.9 inference).
+// summed and the sum is divided by 8. The coefficients are premultiplied by opacity, as the GPU stores
+// them (passes.glsl): an empty optional is an empty child (zero); the thesis averages straight
+// coefficients over the active children instead, which equals this times 8 / #active at level 1.
+// With divideByPi (default) the result is divided by pi, the clamped-cosine integral, which makes 8
+// identical isotropic children of radiance L give a parent of radiance L; without it (the literal
+// Eq. 5.9) every level multiplies radiance by pi (spec 2.9 inference).
 ShRgb shMipParent(const std::array<std::optional<ShRgb>, 8>& children, bool divideByPi = true);
 
 // Eq. 5.9's per-child term is linear in the child's coefficients V: sum over the six faces of

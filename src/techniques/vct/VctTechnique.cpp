@@ -43,6 +43,7 @@
 #include "core/Log.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "techniques/vct/ConeSet.h"
 #include "techniques/vct/ShMath.h"
 
 #include <glm/gtc/constants.hpp>
@@ -127,11 +128,14 @@ void VctTechnique::visitSettings(SettingsVisitor& v) {
     v.field("resolution", m_resolution, "voxels per side N (power of two; thesis 128..512, 256 for its GI figures; 64 here for llvmpipe)", 16, 512);
     v.field("separability", m_separability, "conservative: 26-separating overlap (Fig. 4.4); thin: 6-separating (Fig. 4.5, the Table 4.1 benchmark)", kSeparabilities);
     v.field("cutoff", m_cutoff, "hybrid classification: projected triangle area on its dominant plane, voxels^2, above which a triangle goes to pass 2 (thesis: 'a few', optimum 0.5..13.7 in Table 4.1)", 0.0f, 1.0e6f);
-    v.field("storage", m_storage, "radiance storage: iso RGBA8 (5.1.1), aniso 6 x RGBA8 (5.1.2), sh-f32 12 x R32F with float atomics, sh-u8 3 x RGBA8 transferred from iso (5.1.3)", kStorages);
+    v.field("storage", m_storage, "radiance storage: iso RGBA8 (5.1.1), aniso 6 x RGBA8 (5.1.2; the default, closest to the reference), sh-f32 12 x R32F with float atomics, sh-u8 3 x RGBA8 transferred from iso (5.1.3)", kStorages);
     v.field("atomic", m_atomic, "level-0 write conflicts: average = compare-and-swap running average (Fig. B.1), max = imageAtomicMax", kAtomics);
     v.field("sparseMip", m_sparseMip, "post-voxelization and mipmapping over active-voxel lists (thesis 5.4); off = every voxel (dense)");
     v.field("binary", m_binary, "occupancy only (single-component volume, Table 4.1 benchmark mode): no radiance, the indirect output is black unless a debug view shows the occupancy");
-    v.field("tracer", m_tracer, "diffuse cones: specialised 60-degree tracer at integer LODs (Fig. B.5) or the generic tracer (Fig. B.4)", kTracers);
+    v.field("tracer", m_tracer, "diffuse cones: the generic tracer (Fig. B.4, with the tangent cap; the default, closest to the reference) or the specialised 60-degree tracer at integer LODs (Fig. B.5, as printed)", kTracers);
+    v.field("tangentCap", m_tangentCap, "generic tracer: a sample whose trilinear footprint would reach below the receiver's tangent plane takes the finest level that stays above it and steps by that level's texel (bounce's fix: receivers lit themselves through the filter); off = Fig. B.4 as printed");
+    v.field("anisoBlend", m_anisoBlend, "aniso sampling (Fig. B.2's ambient cube): transmittance = opacity 1 - prod (1 - a_i)^(d_i^2), so a plane opaque along its normal stops oblique cones; linear = the printed sum d_i^2 a_i", kAnisoBlends);
+    v.field("opacityCorrection", m_opacityCorrection, "iso/SH samples: opacity 1 - (1 - a)^s for a sample standing for s level-0 voxels of path (a is a mean over level-0 voxels); off = the thesis's raw mean opacity, under which a one-voxel wall at level k lets 1 - 2^-k of a cone through");
     v.field("startOffset", m_startOffset, "f of Eqs. 6.1-6.2, voxels: diffuse/AO origins move f along the normal, specular cones start at f|v|/(n.w) (thesis default 1.5)", 0.0f, 16.0f);
     v.field("maxStartOffset", m_maxStartOffset, "fMax of Eq. 6.2, voxels: cap of the specular start distance at grazing angles (not given by the thesis)", 0.0f, 64.0f);
     v.field("maxDistance", m_maxDistance, "cone length, metres; 0 = the grid's diagonal", 0.0f, 1.0e6f);
@@ -337,6 +341,10 @@ Expected<void> VctTechnique::allocate(const SetupContext&) {
         d.levels = levels;
         d.minFilter = levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST;
         d.magFilter = levels > 1 ? GL_LINEAR : GL_NEAREST;
+        // Clamp to edge (the TextureDesc default): a sample whose footprint crosses the grid's side
+        // reads the boundary texels, where the scene's bounding walls lie (a zero border lets cones
+        // through those walls at coarse levels: measured 12-22 % darker). Cones end where their near
+        // edge leaves the grid (cone.glsl), so nothing is collected from beyond it.
         return gl::Texture::create(name, d);
     };
     m_iso = volume("vct.iso", GL_RGBA8, m_levels);
@@ -421,6 +429,11 @@ void VctTechnique::updateUniforms(FrameContext& ctx) {
                         glm::radians(m_shadowAperture));
     u.debug = glm::vec4(static_cast<float>(debugIndex(m_debugView)), static_cast<float>(std::min(m_debugLevel, m_levels - 1)), m_debugSlice,
                         m_sparseActive ? 1.0f : 0.0f);
+    // |v| of Eq. 6.2 for a cubic voxel: the diagonal for 26-separating voxelization, the side for
+    // 6-separating (vct::voxelExtent, ConeSet.h), in voxels.
+    const float extent = vct::voxelExtent(m_separability == "conservative" ? vct::Separability::Conservative26 : vct::Separability::Thin6,
+                                          glm::vec3(1.0f));
+    u.trace = glm::vec4(m_tangentCap ? 1.0f : 0.0f, m_opacityCorrection ? 1.0f : 0.0f, extent, m_anisoBlend == "transmittance" ? 1.0f : 0.0f);
     for (size_t i = 0; i < VCT_MAX_LIGHTS; ++i) u.lights[i] = i < ctx.lights.count() ? ctx.lights.light(i) : gpu::LightGpu{};
     m_ubo.upload(0, sizeof(u), &u);
 }
@@ -448,9 +461,6 @@ void VctTechnique::clearVolumes() {
             list.buffer.upload(0, sizeof(head), &head);
         }
     }
-    // The SH-U8 transfer writes occupied voxels only.
-    if (storage == VCT_STORAGE_SH_U8 && !m_binary)
-        for (gl::Texture& v : m_volumes) glClearTexImage(v.id(), 0, GL_RGBA, GL_FLOAT, zeroF);
     // The SH-U8 transfer writes occupied voxels only.
     if (storage == VCT_STORAGE_SH_U8 && !m_binary)
         for (gl::Texture& v : m_volumes) glClearTexImage(v.id(), 0, GL_RGBA, GL_FLOAT, zeroF);
@@ -689,8 +699,8 @@ void VctTechnique::collectCounters(Counters& out) {
     out["trianglesPass2"] = c[2];
     out["resolution"] = m_resolution;
     out["radianceRange"] = m_uniforms.range.x;
-    out["bytesPerVoxel"] = m_binary ? 1.0 : radianceBytesPerVoxel(m_storage);
-    out["alphaBytesPerVoxel"] = (m_binary || storageId() == VCT_STORAGE_ISO) ? 0.0 : 4.0;
+    out["bytesPerVoxel"] = allocatedRadianceBytesPerVoxel();
+    out["alphaBytesPerVoxel"] = allocatedAlphaBytesPerVoxel();
     if (sparse) {
         bool overflow = false;
         double active = 0.0;
@@ -711,6 +721,32 @@ void VctTechnique::collectCounters(Counters& out) {
         out["sparseOverflow"] = overflow ? 1.0 : 0.0;
     }
     out["sparseMip"] = sparse ? 1.0 : 0.0;
+}
+
+namespace {
+// Bytes of one level-0 texel of `t` as allocated: the component sizes GL reports for its format.
+double texelBytes(const gl::Texture& t) {
+    GLint bits = 0;
+    for (GLenum q : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE}) {
+        GLint b = 0;
+        glGetTextureLevelParameteriv(t.id(), 0, q, &b);
+        bits += b;
+    }
+    return bits / 8.0;
+}
+}  // namespace
+
+double VctTechnique::allocatedRadianceBytesPerVoxel() const {
+    if (m_binary) return texelBytes(m_binaryVolume);
+    // The isotropic format's radiance is its RGBA8 volume; the other formats keep it as their alpha.
+    if (storageId() == VCT_STORAGE_ISO) return texelBytes(m_iso);
+    double bytes = 0.0;
+    for (const gl::Texture& v : m_volumes) bytes += texelBytes(v);
+    return bytes;
+}
+
+double VctTechnique::allocatedAlphaBytesPerVoxel() const {
+    return (m_binary || storageId() == VCT_STORAGE_ISO) ? 0.0 : texelBytes(m_iso);
 }
 
 std::vector<uint8_t> VctTechnique::downloadOccupancy() const {

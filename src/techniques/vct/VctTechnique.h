@@ -13,6 +13,7 @@ namespace bounce {
 class VctTechnique final : public Technique {
 public:
     std::string_view name() const override { return "vct"; }
+    bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
@@ -29,7 +30,8 @@ public:
     static constexpr std::array<std::string_view, 2> kSeparabilities{"conservative", "thin"};
     static constexpr std::array<std::string_view, 4> kStorages{"iso", "aniso", "sh-f32", "sh-u8"};
     static constexpr std::array<std::string_view, 2> kAtomics{"average", "max"};
-    static constexpr std::array<std::string_view, 2> kTracers{"specialised", "generic"};
+    static constexpr std::array<std::string_view, 2> kTracers{"generic", "specialised"};
+    static constexpr std::array<std::string_view, 2> kAnisoBlends{"transmittance", "linear"};
     static constexpr std::array<std::string_view, 5> kDebugViews{"none", "occupancy", "radiance", "ao", "slice"};
 
     // For tests and benchmarks: the volumes of the last frame.
@@ -42,8 +44,12 @@ public:
     // floats, 4 per voxel for RGBA formats and 1 for R32F.
     std::vector<float> downloadVolume(int index, int level) const;
     glm::mat4 voxelFromWorld() const { return m_uniforms.voxelFromWorld; }
-    // Bytes per level-0 voxel of the radiance storage alone, and of the opacity volume (R8).
+    // Bytes per level-0 voxel of the radiance storage alone (R8), the thesis's figures per format.
     static double radianceBytesPerVoxel(std::string_view storage);
+    // Bytes per level-0 voxel of the radiance volumes and of the opacity volume as allocated: the
+    // level-0 texel sizes GL reports for the textures this frame uses (the R8 counters).
+    double allocatedRadianceBytesPerVoxel() const;
+    double allocatedAlphaBytesPerVoxel() const;
 
 private:
     struct ActiveList {
@@ -70,11 +76,14 @@ private:
     int m_resolution = 64;
     std::string m_separability{"conservative"};
     float m_cutoff = 3.0f;
-    std::string m_storage{"sh-u8"};
+    std::string m_storage{"aniso"};
     std::string m_atomic{"average"};
     bool m_sparseMip = true;
     bool m_binary = false;
-    std::string m_tracer{"specialised"};
+    std::string m_tracer{"generic"};
+    bool m_tangentCap = true;
+    std::string m_anisoBlend{"transmittance"};
+    bool m_opacityCorrection = true;
     float m_startOffset = 1.5f;
     float m_maxStartOffset = 4.0f;
     float m_maxDistance = 0.0f;

@@ -5,22 +5,12 @@ namespace bounce::vct {
 
 namespace {
 float clamp255(float x) { return x >= 0.0f ? (x <= 255.0f ? x : 255.0f) : 0.0f; }
-
-// (sum of premultiplied colours, sum of opacities) -> straight colour and mean opacity over n.
-glm::vec4 unpremultiplyMean(glm::vec3 premultipliedSum, float alphaSum, float n) {
-    if (alphaSum <= 0.0f) return glm::vec4(0.0f);
-    return glm::vec4(premultipliedSum / alphaSum, alphaSum / n);
-}
 }  // namespace
 
 glm::vec4 isotropicMipParent(const std::array<glm::vec4, 8>& children) {
-    glm::vec3 premultiplied(0.0f);
-    float alpha = 0.0f;
-    for (const glm::vec4& c : children) {
-        premultiplied += c.a * glm::vec3(c);
-        alpha += c.a;
-    }
-    return unpremultiplyMean(premultiplied, alpha, 8.0f);
+    glm::vec4 sum(0.0f);
+    for (const glm::vec4& c : children) sum += c;
+    return sum / 8.0f;
 }
 
 int anisoNearChild(int face, int pairBits) {
@@ -34,16 +24,14 @@ AnisoVoxel anisotropicMipParent(const std::array<AnisoVoxel, 8>& children) {
     AnisoVoxel parent;
     for (int face = 0; face < 6; ++face) {
         int bit = 1 << (face / 2);
-        glm::vec3 premultiplied(0.0f);
-        float alpha = 0.0f;
+        glm::vec4 sum(0.0f);
         for (int pair = 0; pair < 8; ++pair) {
             if (pair & bit) continue;  // one representative per pair: the face-axis bit clear
             glm::vec4 n = children[anisoNearChild(face, pair)][face];
             glm::vec4 f = children[anisoNearChild(face, pair) ^ bit][face];
-            premultiplied += n.a * glm::vec3(n) + (1.0f - n.a) * f.a * glm::vec3(f);
-            alpha += n.a + (1.0f - n.a) * f.a;
+            sum += n + (1.0f - n.a) * f;
         }
-        parent[face] = unpremultiplyMean(premultiplied, alpha, 4.0f);
+        parent[face] = sum / 4.0f;
     }
     return parent;
 }
