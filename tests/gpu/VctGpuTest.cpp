@@ -263,13 +263,13 @@ TEST_F(VctGpuTest, IndirectLightAgainstTheOneBounceReference) {
     const Image ref = oneBounceReference(*scene, kSize, 0, 256);
     const double refMean = meanOf(ref);
     ASSERT_GT(refMean, 0.0);
-    // Measured on llvmpipe (64^3 grid, 64^2 image; docs/techniques/vct.md "Quality"): relMSE
-    // iso 0.11, aniso 0.12, sh-f32 0.08, sh-u8 0.09; image mean / reference iso 0.16, aniso 0.86,
-    // sh-f32 0.33, sh-u8 0.28. Bounds at ~1.3x the measured relMSE (the reference's 256-spp noise
-    // moves it by a few per cent). Iso and SH average opacity over the mip levels and so see walls as
-    // partly transparent (thesis 5.3.1), which darkens them; the anisotropic faces composite along
-    // the view direction and keep a wall opaque: its mean must be within 25 % of the reference.
-    const std::map<std::string, double> bound = {{"iso", 0.15}, {"aniso", 0.16}, {"sh-f32", 0.11}, {"sh-u8", 0.12}};
+    // Measured on llvmpipe (64^3 grid, 64^2 image, 256-spp reference; bench/results/vct-tests-*.json):
+    // relMSE iso 0.078, aniso 0.045, sh-f32 0.065, sh-u8 0.081; image mean / reference iso 0.77,
+    // aniso 0.94, sh-f32 0.95, sh-u8 0.75. relMSE bounds at ~1.25x the measurement (the reference's
+    // 256-spp noise moves it by a few per cent): the default (aniso) fails its bound with the tangent
+    // cap off (self-light), the transmittance blend off or a halved injection; every format's light
+    // stays within the fidelity bound of its measurement (sh-u8's 8-bit range loses the dim levels).
+    const std::map<std::string, double> bound = {{"iso", 0.1}, {"aniso", 0.056}, {"sh-f32", 0.082}, {"sh-u8", 0.1}};
     std::map<std::string, double> mean;
     for (const auto& [storage, b] : bound) {
         const Image img = renderIndirect(*scene, "vct", {{"storage", storage}}, kSize);
@@ -280,11 +280,9 @@ TEST_F(VctGpuTest, IndirectLightAgainstTheOneBounceReference) {
         RecordProperty(storage + "_meanRatio", std::to_string(mean[storage]));
         EXPECT_LT(e, b) << storage;
     }
-    EXPECT_GT(mean["aniso"], 0.75);
-    EXPECT_LT(mean["aniso"], 1.25);
-    // SH keeps more of the light than the isotropic average (its mip re-emits the children's light
-    // towards the parent's faces instead of averaging it with the empty children).
-    EXPECT_GT(mean["sh-f32"], mean["iso"]);
+    // The default storage within the fidelity bound (+-15 %, DEVELOPERS.md): measured 0.94.
+    EXPECT_NEAR(mean["aniso"], 1.0, 0.15);
+    EXPECT_NEAR(mean["sh-f32"], 1.0, 0.15);
 }
 
 TEST_F(VctGpuTest, FollowsTheMovingLightAndBlockOfCornellBoxDynamic) {
@@ -305,9 +303,9 @@ TEST_F(VctGpuTest, FollowsTheMovingLightAndBlockOfCornellBoxDynamic) {
         last = img;
     }
     // Re-voxelized every frame: the indirect light moves with the spot (a volume frozen after frame 0
-    // keeps frame 0's light and fails the bound at frame 30). Measured 0.148 / 0.089 / 0.064 at
-    // frames 0 / 15 / 30, 48^2 (bench/results/vct-tests-*.json); 0.2 is 1.35x the worst.
-    EXPECT_LT(worst, 0.2);
+    // keeps frame 0's light and fails the bound at frame 30: 0.34 before issue 28). Measured 0.061 /
+    // 0.087 / 0.048 at frames 0 / 15 / 30, 48^2 (bench/results/vct-tests-*.json); 0.12 is 1.4x the worst.
+    EXPECT_LT(worst, 0.12);
     EXPECT_GT(relativeRmsError(last, first), 0.05);
 }
 

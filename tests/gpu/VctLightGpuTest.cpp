@@ -226,3 +226,4 @@ TEST_F(VctLightGpuTest, EnergyDoesNotFallAsTheGridRefines) {
         }
     }
 }
+
