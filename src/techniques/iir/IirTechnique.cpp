@@ -32,6 +32,8 @@
 // already queued this frame (no one-frame delay); G-buffer atlases are 32-bit float.
 #include "techniques/iir/IirTechnique.h"
 
+#include "scene/AreaTexture.h"
+
 #include "core/Check.h"
 #include "core/Log.h"
 #include "gpu/Bindings.h"
@@ -117,11 +119,13 @@ IirPrimaryLight IirTechnique::primaryLight(const Scene& scene, float time) {
             break;
         case LightType::Area: {
             // A cosine spot at the centre (n = 1, cutoff 90°) with I0 = L·A, whose flux π·L·A equals the
-            // rectangle's: the paper's "crude approximation" of §7 (rays from one point).
+            // rectangle's: the paper's "crude approximation" of §7 (rays from one point). A textured light
+            // emits L times its texture's mean multiplier at this time (its pattern is lost with the rest
+            // of the rectangle's extent; without the mean a mostly dark screen shot its peak radiance).
             p.emitter.type = LightType::Spot;
             p.emitter.direction = light.areaNormal();
             p.emitter.position = light.position + light.areaNormal() * (kSurfaceOffsetInDiagonals * diagonal);
-            p.emitter.intensity = light.radiance * light.area();
+            p.emitter.intensity = light.radiance * areaTextureMean(scene, scene.lights.front(), time) * light.area();
             p.emitter.falloffExponent = 1.0f;
             p.emitter.cutoffAngle = glm::half_pi<float>();
             p.supported = light.area() > 0.0f;
