@@ -44,6 +44,7 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 #include "techniques/vct/ConeSet.h"
+#include "techniques/vct/RadianceRange.h"
 #include "techniques/vct/ShMath.h"
 
 #include <glm/gtc/constants.hpp>
@@ -85,41 +86,6 @@ struct ListHead {
     uint32_t count, instances, first, baseInstance;
     uint32_t capacity, pad0, pad1, pad2;
 };
-
-// Irradiance on a surface at x with normal n from light l, unshadowed (the range estimate only).
-float unshadowedIrradiance(const Light& l, glm::vec3 x, glm::vec3 n, bool twoSided) {
-    auto cosine = [&](glm::vec3 toLight) {
-        const float c = glm::dot(n, toLight);
-        return twoSided ? std::abs(c) : std::max(c, 0.0f);
-    };
-    auto maxc = [](glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); };
-    switch (l.type) {
-        case LightType::Directional: return maxc(l.irradiance) * cosine(-glm::normalize(l.direction));
-        case LightType::Area: {
-            const glm::vec3 d = l.position - x;
-            const float r2 = std::max(glm::dot(d, d), 1e-8f);
-            const glm::vec3 w = d / std::sqrt(r2);
-            const float area = glm::length(glm::cross(l.edgeU, l.edgeV));
-            const float cosL = std::max(glm::dot(-w, l.areaNormal()), 0.0f);
-            // Point approximation of the rectangle, capped by the irradiance of an infinite emitter.
-            return std::min(maxc(l.radiance) * area * cosL * cosine(w) / r2, glm::pi<float>() * maxc(l.radiance));
-        }
-        case LightType::Point:
-        case LightType::Spot: {
-            const glm::vec3 d = l.position - x;
-            const float r2 = std::max(glm::dot(d, d), 1e-8f);
-            const glm::vec3 w = d / std::sqrt(r2);
-            float intensity = maxc(l.intensity);
-            if (l.type == LightType::Spot) {
-                const float cosA = glm::dot(-w, glm::normalize(l.direction));
-                if (cosA < std::cos(l.cutoffAngle) || cosA <= 0.0f) return 0.0f;
-                intensity *= std::pow(cosA, l.falloffExponent);
-            }
-            return intensity * cosine(w) / r2;
-        }
-    }
-    return 0.0f;
-}
 
 }  // namespace
 
@@ -287,46 +253,7 @@ Expected<void> VctTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(buildPrograms());
     BOUNCE_TRY_VOID(allocate(ctx));
 
-    // Range samples: area-weighted points on every object's triangles (fixed seed: deterministic).
-    m_rangeSamples.clear();
-    double totalArea = 0.0;
-    std::vector<double> areas;
-    std::vector<std::pair<uint32_t, uint32_t>> tris;  // (object, first index)
-    for (uint32_t o = 0; o < ctx.scene.objects.size(); ++o) {
-        const Object& obj = ctx.scene.objects[o];
-        const Mesh& m = ctx.scene.meshes[obj.mesh];
-        const glm::mat4 w = obj.worldFromObject(0.0f);
-        for (uint32_t i = 0; i + 2 < m.indices.size(); i += 3) {
-            const glm::vec3 a = glm::vec3(w * glm::vec4(m.positions[m.indices[i]], 1.0f));
-            const glm::vec3 b = glm::vec3(w * glm::vec4(m.positions[m.indices[i + 1]], 1.0f));
-            const glm::vec3 c = glm::vec3(w * glm::vec4(m.positions[m.indices[i + 2]], 1.0f));
-            const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
-            areas.push_back(area);
-            tris.emplace_back(o, i);
-            totalArea += area;
-        }
-    }
-    if (totalArea > 0.0) {
-        std::mt19937 rng(1234u);
-        std::discrete_distribution<size_t> pick(areas.begin(), areas.end());
-        std::uniform_real_distribution<float> u01(0.0f, 1.0f);
-        for (size_t k = 0; k < kRangeSamples; ++k) {
-            const auto [o, i] = tris[pick(rng)];
-            const Object& obj = ctx.scene.objects[o];
-            const Mesh& m = ctx.scene.meshes[obj.mesh];
-            const glm::vec3 a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
-            float s = u01(rng), t = u01(rng);
-            if (s + t > 1.0f) s = 1.0f - s, t = 1.0f - t;
-            const Material& mat = ctx.scene.materials[obj.material];
-            RangeSample r;
-            r.object = o;
-            r.position = a + s * (b - a) + t * (c - a);
-            r.normal = glm::normalize(glm::cross(b - a, c - a));
-            r.albedo = std::max(mat.baseColor.x, std::max(mat.baseColor.y, mat.baseColor.z)) * (1.0f - mat.metallic);
-            if (mat.twoSided) r.albedo = -r.albedo;  // sign marks two-sided surfaces
-            m_rangeSamples.push_back(r);
-        }
-    }
+    m_rangeSamples = vct::rangeSamples(ctx.scene, kRangeSamples);
     return {};
 }
 
@@ -404,20 +331,7 @@ void VctTechnique::updateUniforms(FrameContext& ctx) {
     // Radiance range: the setting, or the brightest reflected radiance of the surface samples.
     float range = m_radianceRange;
     if (range <= 0.0f) {
-        float brightest = 0.0f;
-        const std::vector<Light>& lights = ctx.sceneGpu.lights();
-        std::vector<glm::mat4> transforms(ctx.scene.objects.size()), normals(ctx.scene.objects.size());
-        for (size_t o = 0; o < ctx.scene.objects.size(); ++o) {
-            transforms[o] = ctx.scene.objects[o].worldFromObject(ctx.time);
-            normals[o] = glm::transpose(glm::inverse(transforms[o]));
-        }
-        for (const RangeSample& s : m_rangeSamples) {
-            const glm::vec3 x = glm::vec3(transforms[s.object] * glm::vec4(s.position, 1.0f));
-            const glm::vec3 n = glm::normalize(glm::vec3(normals[s.object] * glm::vec4(s.normal, 0.0f)));
-            float e = 0.0f;
-            for (const Light& l : lights) e += unshadowedIrradiance(l, x, n, s.albedo < 0.0f);
-            brightest = std::max(brightest, std::abs(s.albedo) / glm::pi<float>() * e);
-        }
+        const float brightest = vct::brightestReflectedRadiance(m_rangeSamples, ctx.scene, ctx.sceneGpu.lights(), ctx.time);
         range = brightest > 0.0f ? brightest * kRangeHeadroom : 1.0f;
     }
     u.range = glm::vec4(range, range * kShU8RangeFactor, static_cast<float>(std::min<size_t>(ctx.lights.count(), VCT_MAX_LIGHTS)),

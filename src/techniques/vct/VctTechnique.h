@@ -2,6 +2,7 @@
 // `vct`: voxel cone tracing with hybrid voxelization and spherical-harmonics radiance (Rauwendaal
 // 2013). See VctTechnique.cpp for the passes and docs/techniques/vct.md for settings and deviations.
 #include "techniques/Technique.h"
+#include "techniques/vct/RadianceRange.h"
 #include "techniques/vct/vct_shared.h"
 
 #include <array>
@@ -115,13 +116,7 @@ private:
     gl::Program m_postDense, m_postSparse, m_mipIsoDense, m_mipIsoSparse, m_mipDense, m_mipSparse;
     gl::Program m_traceDiffuse, m_traceSpecular, m_emission, m_directCone;
     const render::SceneGpu* m_sceneGpu = nullptr;
-    // Surface samples for the automatic radiance range (object space).
-    struct RangeSample {
-        uint32_t object;
-        glm::vec3 position, normal;
-        float albedo;  // largest channel
-    };
-    std::vector<RangeSample> m_rangeSamples;
+    std::vector<vct::RangeSample> m_rangeSamples;  // the automatic radiance range's surface samples
 };
 
 }  // namespace bounce
