@@ -31,12 +31,16 @@
 //     volume (Eq. 6.3), replaces the shared shadow-mapped pass (the technique then owns the direct
 //     light). Off by default: the shared pass is what every other technique uses.
 //
-// Deviations (all in docs/techniques/vct.md): radiance is HDR, so the 8-bit formats store it
-// divided by a range (auto: the brightest reflected radiance of a fixed set of surface samples under
-// the current lights, times 1.25); SH-U8 is stored as RGBA8_SNORM (the thesis leaves the sign
-// mapping open); llvmpipe/GL without bindless binds the 6 or 12 volumes to ordinary texture units;
-// at most four lights are injected; SH samples are clamped at 0 (not [0, 1]); hybrid pass 2 reads
-// (vertex, object) pairs by vertex pulling, because one mesh can be placed by several objects.
+// Deviations (docs/techniques/vct.md, one line each):
+//  - HDR radiance: the 8-bit formats store it divided by an automatic range (RadianceRange.h); SH-U8 as
+//    RGBA8_SNORM; SH clamped at 0, not [0, 1].
+//  - every volume, SH included, stores colour premultiplied by opacity (the SH mip divides by 8).
+//  - generic tracer (the default) with the tangent cap: no sample's footprint reaches below the
+//    receiver's tangent plane (the receiver lit itself through the filter).
+//  - aniso opacity blended as transmittance; iso/SH opacity corrected for the step length; cones end
+//    where they leave the grid.
+//  - no bindless: the 6 or 12 volumes on ordinary texture units; at most four lights injected; hybrid
+//    pass 2 reads (vertex, object) pairs by vertex pulling (a mesh may be placed by several objects).
 #include "techniques/vct/VctTechnique.h"
 
 #include "core/Check.h"
