@@ -61,6 +61,22 @@ def vct_table(rec, path):
     for res, e in r["mipmap"].items():
         a, s, u = med(e["aniso"]["mipmap_ms"]), med(e["sh-f32"]["mipmap_ms"]), med(e["sh-u8"]["mipmap_ms"])
         lines.append(f"| {res} | {rng(e['aniso']['mipmap_ms'])} | {rng(e['sh-f32']['mipmap_ms'])} | {rng(e['sh-u8']['mipmap_ms'])} | {s / a:.2f} |")
+    if "r9" in r:
+        lines += ["", "R9 (Fig. 5.4) — voxelization per format and level-0 write mode, fragment-parallel voxelizer, 128³, ms "
+                  "(thesis: iso max cheapest, the CAS average costly under contention, SH-U8 about iso's cost):", "",
+                  "| scene | " + " | ".join(f"`{k}`" for k in next(iter(r["r9"].values())).keys()) + " | average / max (iso) |",
+                  "|---|" + "---|" * (len(next(iter(r["r9"].values()))) + 1)]
+        for scene, e in r["r9"].items():
+            lines.append(f"| `{scene}` | " + " | ".join(rng(v["voxelize_ms"]) for v in e.values()) +
+                         f" | {med(e['iso/average']['voxelize_ms']) / med(e['iso/max']['voxelize_ms']):.2f}× |")
+    if "r10" in r:
+        lines += ["", "R10 (Fig. 5.11) — voxelize + post-voxelize + mipmap with active-voxel lists (sparse) and without "
+                  "(dense), 128³, ms (thesis: the lists win for every format but iso):", "",
+                  "| scene | format | sparse | dense | dense / sparse |", "|---|---|---|---|---|"]
+        for scene, e in r["r10"].items():
+            for st in ("iso", "aniso", "sh-f32", "sh-u8"):
+                sp, de = e[f"{st}/sparse"]["total_ms"], e[f"{st}/dense"]["total_ms"]
+                lines.append(f"| `{scene}` | `{st}` | {rng(sp)} | {rng(de)} | {med(de) / med(sp):.2f}× |")
     if "cutoff" in r:
         lines += ["", "Hybrid voxelization time over the cutoff (`atrium`, 100K triangles, 128³; thesis Figs. 4.16/4.17: a broad basin, optimum a few voxels²):", "",
                   "| cutoff (voxels²) | triangles in pass 2 | voxelize ms | pass 1 | pass 2 |", "|---|---|---|---|---|"]

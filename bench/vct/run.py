@@ -125,6 +125,39 @@ def main():
                          for s, recs in runs.items()}
     record["results"]["mipmap"] = mip
 
+    # R9 (Fig. 5.4): voxelization cost per format and level-0 write mode, with the fragment-parallel
+    # voxelizer as the thesis's format study, on cornell-box and atrium (100K triangles), 128^3.
+    r9 = {}
+    for scene, params in [("cornell-box", []), ("atrium", ["triangles=100000"])]:
+        cases = [(f"{st}/{at}", scene, {"voxelizer": "fragment", "storage": st, "atomic": at, "resolution": "128"}, params)
+                 for st, at in [("iso", "max"), ("iso", "average"), ("aniso", "average"), ("sh-f32", "average"), ("sh-u8", "average")]]
+        runs, cmds = interleaved(bounce, cases, reps, frames, 64)
+        r9[scene] = {label: {"voxelize_ms": summary([stage(r, "vct/voxelize") for r in recs]),
+                             "post_ms": summary([stage(r, "vct/post-voxelize") for r in recs]),
+                             "voxelWrites": recs[0]["frames"][-1]["counters"]["voxelWrites"], "command": cmds[label]}
+                     for label, recs in runs.items()}
+        print("R9", scene, {k: round(v["voxelize_ms"]["median"], 1) for k, v in r9[scene].items()}, flush=True)
+    record["results"]["r9"] = r9
+
+    # R10 (Fig. 5.11): voxelization + post + mipmap with and without the active-voxel lists, per format,
+    # cornell-box and atrium at 128^3 (the hybrid voxelizer, the default).
+    r10 = {}
+    for scene, params in [("cornell-box", []), ("atrium", ["triangles=100000"])]:
+        cases = [(f"{st}/{'sparse' if sp else 'dense'}", scene, {"storage": st, "sparseMip": "true" if sp else "false",
+                                                                "resolution": "128"}, params)
+                 for st in ("iso", "aniso", "sh-f32", "sh-u8") for sp in (True, False)]
+        runs, cmds = interleaved(bounce, cases, reps, frames, 64)
+        r10[scene] = {label: {name: summary([stage(r, key) for r in recs]) for name, key in
+                              [("voxelize_ms", "vct/voxelize"), ("post_ms", "vct/post-voxelize"), ("mipmap_ms", "vct/mipmap")]}
+                      for label, recs in runs.items()}
+        for label, recs in runs.items():
+            r10[scene][label]["total_ms"] = summary([stage(r, "vct/voxelize") + stage(r, "vct/post-voxelize") + stage(r, "vct/mipmap")
+                                                     for r in recs])
+            r10[scene][label]["activeVoxelsAllLevels"] = recs[0]["frames"][-1]["counters"].get("activeVoxelsAllLevels", 0)
+            r10[scene][label]["command"] = cmds[label]
+        print("R10", scene, {k: round(v["total_ms"]["median"], 1) for k, v in r10[scene].items()}, flush=True)
+    record["results"]["r10"] = r10
+
     # Figs. 4.16/4.17: hybrid time over the cutoff (atrium 100K triangles, 128^3, binary, thin).
     cutoffs = [0.5, 1, 2, 4, 8, 16, 64] if not quick else [1, 4, 16]
     cases = [(str(c), "atrium", {"voxelizer": "hybrid", "binary": "true", "separability": "thin", "resolution": "128",

@@ -16,6 +16,9 @@
 //              coefficients are premultiplied by opacity like the isotropic colours, so that filtering
 //              between occupied and empty voxels does not darken twice (docs/techniques/vct.md). Level 0
 //              (opacity 0 or 1) is the same in both conventions.
+//   VCT_PASS 5 sparse clear (bounce; section 5.4 leaves clearing open): the voxels the previous frame
+//              listed at level u_level are zeroed in the isotropic volume, the mutex and up to six
+//              radiance volumes (u_volumeCount), so that the sparse path never clears a dense level.
 // The voxel comes from voxelCoordinate() (dense: the invocation; sparse: the active list).
 #include "techniques/vct/volume.glsl"
 #include "techniques/vct/sh.glsl"
@@ -189,5 +192,33 @@ void processVoxel(ivec3 q) {
 #else
     imageStore(i_c0, q, parent / u_vct.range.y);
 #endif
+}
+#elif VCT_PASS == 5
+layout(binding = BINDING_IMG0, rgba8) uniform writeonly image3D i_clearIso;
+layout(binding = BINDING_IMG1, r32ui) uniform writeonly uimage3D i_clearMutex;
+#if VCT_STORAGE == VCT_STORAGE_SH_F32
+#define VCT_CLEAR_FORMAT r32f
+#elif VCT_STORAGE == VCT_STORAGE_SH_U8
+#define VCT_CLEAR_FORMAT rgba8_snorm
+#else
+#define VCT_CLEAR_FORMAT rgba8
+#endif
+layout(binding = BINDING_IMG2, VCT_CLEAR_FORMAT) uniform writeonly image3D i_clear0;
+layout(binding = BINDING_IMG3, VCT_CLEAR_FORMAT) uniform writeonly image3D i_clear1;
+layout(binding = BINDING_IMG4, VCT_CLEAR_FORMAT) uniform writeonly image3D i_clear2;
+layout(binding = BINDING_IMG5, VCT_CLEAR_FORMAT) uniform writeonly image3D i_clear3;
+layout(binding = BINDING_IMG6, VCT_CLEAR_FORMAT) uniform writeonly image3D i_clear4;
+layout(binding = BINDING_IMG7, VCT_CLEAR_FORMAT) uniform writeonly image3D i_clear5;
+uniform int u_volumeCount;  // radiance volumes bound at IMG2.. (0..6)
+
+void processVoxel(ivec3 p) {
+    imageStore(i_clearIso, p, vec4(0.0));
+    imageStore(i_clearMutex, p, uvec4(0u));
+    if (u_volumeCount > 0) imageStore(i_clear0, p, vec4(0.0));
+    if (u_volumeCount > 1) imageStore(i_clear1, p, vec4(0.0));
+    if (u_volumeCount > 2) imageStore(i_clear2, p, vec4(0.0));
+    if (u_volumeCount > 3) imageStore(i_clear3, p, vec4(0.0));
+    if (u_volumeCount > 4) imageStore(i_clear4, p, vec4(0.0));
+    if (u_volumeCount > 5) imageStore(i_clear5, p, vec4(0.0));
 }
 #endif

@@ -177,6 +177,7 @@ Expected<void> VctTechnique::buildPrograms() {
     if (m_sparseMip) {
         BOUNCE_TRY_VOID(pass(1, true, m_postSparse));
         BOUNCE_TRY_VOID(pass(2, true, m_mipIsoSparse));
+        BOUNCE_TRY_VOID(pass(5, true, m_clearSparse));
     }
     if (storage == VCT_STORAGE_ANISO || storage == VCT_STORAGE_SH_F32 || storage == VCT_STORAGE_SH_U8) {
         const int id = storage == VCT_STORAGE_ANISO ? 3 : 4;
@@ -311,6 +312,7 @@ Expected<void> VctTechnique::allocate(const SetupContext&) {
         m_lists.push_back(std::move(list));
     }
     m_sparseActive = m_sparseMip;
+    m_listsValid = false;
     m_dummy2D = gl::Texture::create2D("vct.shadowDummy2D", 1, 1, GL_DEPTH_COMPONENT32F);
     m_dummy2D.setCompareMode(true);
     gl::TextureDesc cube;
@@ -363,31 +365,70 @@ void VctTechnique::clearVolumes() {
     if (m_binary) {
         glClearTexImage(m_binaryVolume.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
     }
-    glClearTexImage(m_iso.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, &zero);
-    if (m_sparseActive) {
-        for (int l = 0; l < m_levels; ++l) glClearTexImage(m_mutex.id(), l, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        // Only active parents are written: every other voxel of the upper levels must read empty.
-        for (int l = 1; l < m_levels; ++l) {
-            glClearTexImage(m_iso.id(), l, GL_RGBA, GL_UNSIGNED_BYTE, &zero);
-            for (gl::Texture& v : m_volumes) {
-                if (storage == VCT_STORAGE_SH_F32) glClearTexImage(v.id(), l, GL_RED, GL_FLOAT, zeroF);
-                else glClearTexImage(v.id(), l, GL_RGBA, GL_FLOAT, zeroF);
+    if (m_sparseActive && m_listsValid) {
+        clearListedVoxels();  // every level, level 0 included, through last frame's lists
+    } else {
+        glClearTexImage(m_iso.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, &zero);
+        if (m_sparseActive) {
+            for (int l = 0; l < m_levels; ++l) glClearTexImage(m_mutex.id(), l, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+            // Only active parents are written: every other voxel of the upper levels must read empty.
+            for (int l = 1; l < m_levels; ++l) {
+                glClearTexImage(m_iso.id(), l, GL_RGBA, GL_UNSIGNED_BYTE, &zero);
+                for (gl::Texture& v : m_volumes) {
+                    if (storage == VCT_STORAGE_SH_F32) glClearTexImage(v.id(), l, GL_RED, GL_FLOAT, zeroF);
+                    else glClearTexImage(v.id(), l, GL_RGBA, GL_FLOAT, zeroF);
+                }
             }
         }
+        // The SH-U8 transfer and the SH-F32 sums write occupied voxels only.
+        if (storage == VCT_STORAGE_SH_U8 && !m_binary)
+            for (gl::Texture& v : m_volumes) glClearTexImage(v.id(), 0, GL_RGBA, GL_FLOAT, zeroF);
+        if (storage == VCT_STORAGE_SH_F32 && !m_binary)
+            for (int c = 0; c < 3; ++c) glClearTexImage(m_volumes[4 * c].id(), 0, GL_RED, GL_FLOAT, zeroF);
+    }
+    if (m_sparseActive) {
         for (ActiveList& list : m_lists) {
             const ListHead head{0u, 1u, 0u, 0u, list.capacity, 0u, 0u, 0u};
             list.buffer.upload(0, sizeof(head), &head);
         }
     }
-    // The SH-U8 transfer writes occupied voxels only.
-    if (storage == VCT_STORAGE_SH_U8 && !m_binary)
-        for (gl::Texture& v : m_volumes) glClearTexImage(v.id(), 0, GL_RGBA, GL_FLOAT, zeroF);
-    if (storage == VCT_STORAGE_SH_F32 && !m_binary) {
-        for (int c = 0; c < 3; ++c) glClearTexImage(m_volumes[4 * c].id(), 0, GL_RED, GL_FLOAT, zeroF);
-        glClearTexImage(m_count.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    }
+    // The SH-F32 write counts (one level) are cleared densely in both paths.
+    if (storage == VCT_STORAGE_SH_F32 && !m_binary) glClearTexImage(m_count.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const uint32_t counters[8] = {0, 0, 0, 0, 0, 1, 0, 0};  // [4..7]: pass 2's DrawArraysIndirectCommand
     m_counters.upload(0, sizeof(counters), counters);
+}
+
+void VctTechnique::clearListedVoxels() {
+    const int storage = storageId();
+    const GLenum volumeFormat = storage == VCT_STORAGE_SH_F32 ? GL_R32F : storage == VCT_STORAGE_SH_U8 ? GL_RGBA8_SNORM : GL_RGBA8;
+    constexpr int kVolumesPerPass = 6;  // IMG2..IMG7: with the iso and mutex images, the 8 units GL 4.5 guarantees
+    m_clearSparse.use();
+    glEnable(GL_RASTERIZER_DISCARD);
+    gl::Context::current()->bindEmptyVertexArray();
+    for (int l = 0; l < m_levels; ++l) {
+        m_lists[l].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+        m_lists[l].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);  // declared, unused
+        glBindImageTexture(BINDING_IMG0, m_iso.id(), l, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        glBindImageTexture(BINDING_IMG1, m_mutex.id(), l, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+        const int volumes = static_cast<int>(m_volumes.size());
+        for (int first = 0; first == 0 || first < volumes; first += kVolumesPerPass) {
+            const int n = std::min(kVolumesPerPass, volumes - first);
+            for (int k = 0; k < kVolumesPerPass; ++k) {
+                // Unused units keep a valid image of the declared format bound.
+                const gl::Texture& t = k < n ? m_volumes[static_cast<size_t>(first + k)] : (volumes > 0 ? m_volumes[0] : m_iso);
+                glBindImageTexture(BINDING_IMG2 + k, t.id(), l, GL_TRUE, 0, GL_WRITE_ONLY, volumes > 0 ? volumeFormat : GL_RGBA8);
+            }
+            m_clearSparse.set("u_level", l);
+            m_clearSparse.set("u_volumeCount", std::max(n, 0));
+            glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_lists[l].buffer.id());
+            glDrawArraysIndirect(GL_POINTS, nullptr);
+        }
+    }
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_RASTERIZER_DISCARD);
+    // The zeros must land before voxelization's atomics and the list heads' reset (a buffer upload).
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void VctTechnique::voxelize(FrameContext& ctx) {
@@ -604,6 +645,7 @@ void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         glClearNamedFramebufferfv(m_traceFbo.id(), GL_COLOR, 0, zero);
     }
     m_frameSparse = sparse;
+    m_listsValid = false;  // until collectCounters has seen that no list overflowed
 }
 
 void VctTechnique::collectCounters(Counters& out) {
@@ -630,6 +672,7 @@ void VctTechnique::collectCounters(Counters& out) {
             active += h.count;
         }
         out["activeVoxelsAllLevels"] = active;
+        m_listsValid = !overflow;  // the lists hold every written voxel: the next frame may clear through them
         if (overflow) {
             // Seen after the frame (no wait on its path): the next frame mipmaps densely; this one's
             // mip levels missed the voxels past the list's capacity.

@@ -62,6 +62,8 @@ private:
     Expected<void> allocate(const SetupContext& ctx);
     void updateUniforms(FrameContext& ctx);
     void clearVolumes();
+    // Sparse path: zero last frame's listed voxels of every level instead of the dense levels.
+    void clearListedVoxels();
     void voxelize(FrameContext& ctx);
     void postVoxelize(bool sparse);
     void mipmap(bool sparse);
@@ -104,6 +106,7 @@ private:
     int m_levels = 1;
     bool m_sparseActive = false;  // sparse path on (off after an overflow of a list)
     bool m_frameSparse = false;   // this frame mipmapped sparsely (collectCounters reads its lists)
+    bool m_listsValid = false;    // the lists hold every voxel the last frame wrote (sparse clear possible)
     gpu::VctUniforms m_uniforms{};
     gl::Buffer m_ubo, m_counters, m_large;
     uint32_t m_largeCapacity = 0;
@@ -113,7 +116,7 @@ private:
     gl::Texture m_dummy2D, m_dummyCube;
     gl::Framebuffer m_voxelFbo, m_traceFbo;
     gl::Program m_voxTriangle, m_voxHybrid, m_voxFragment, m_voxLarge;
-    gl::Program m_postDense, m_postSparse, m_mipIsoDense, m_mipIsoSparse, m_mipDense, m_mipSparse;
+    gl::Program m_postDense, m_postSparse, m_mipIsoDense, m_mipIsoSparse, m_mipDense, m_mipSparse, m_clearSparse;
     gl::Program m_traceDiffuse, m_traceSpecular, m_emission, m_directCone;
     const render::SceneGpu* m_sceneGpu = nullptr;
     std::vector<vct::RangeSample> m_rangeSamples;  // the automatic radiance range's surface samples
