@@ -1,5 +1,5 @@
 // Dense path of techniques/vct/passes.glsl: one invocation per voxel of the level written.
-#if VCT_STORAGE == 2 && VCT_PASS == 1  // VCT_STORAGE_SH_F32 (vct_shared.h is not included yet)
+#if VCT_STORAGE == 2 && VCT_PASS == 1 && VCT_FLOAT_ATOMICS  // SH_F32 (vct_shared.h is not included yet)
 #extension GL_NV_shader_atomic_float : require
 #endif
 #include "common/constants.glsl"

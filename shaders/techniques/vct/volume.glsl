@@ -1,7 +1,7 @@
 // The voxel volumes of Rauwendaal 2013 ch. 5 as images, and the writes of the voxelizers (section
 // 5.1): isotropic RGBA8 through an r32ui view with imageAtomicMax or the compare-and-swap running
-// average of Fig. B.1; 12 x R32F spherical harmonics by float atomic add (NV_shader_atomic_float)
-// plus a write count for the normalisation pass; the binary occupancy volume of Table 4.1; and the
+// average of Fig. B.1; 12 x R32F spherical harmonics by float atomic add (NV_shader_atomic_float,
+// VCT_FLOAT_ATOMICS; else a compare-and-swap loop) plus a write count for the normalisation pass; the binary occupancy volume of Table 4.1; and the
 // active-voxel list of level 0 (section 5.4: a mutex volume claimed with imageAtomicCompSwap, an
 // atomic append). Radiance is stored divided by u_vct.range.x in the 8-bit formats.
 // Inputs: u_vct (BINDING_UBO_PASS). Images: BINDING_IMG0 iso (r32ui), IMG1..3 SH DC r/g/b (r32f),
@@ -19,9 +19,34 @@ ivec3 unpackVoxel(uint v) { return ivec3(v & 1023u, (v >> 10) & 1023u, (v >> 20)
 #ifdef VCT_WRITE
 layout(binding = BINDING_IMG0, r32ui) uniform coherent volatile uimage3D i_iso;
 #if VCT_STORAGE == VCT_STORAGE_SH_F32
+#if VCT_FLOAT_ATOMICS
 layout(binding = BINDING_IMG1, r32f) uniform coherent image3D i_shR;
 layout(binding = BINDING_IMG2, r32f) uniform coherent image3D i_shG;
 layout(binding = BINDING_IMG3, r32f) uniform coherent image3D i_shB;
+void addSh(int c, ivec3 p, float v) {
+    if (c == 0) imageAtomicAdd(i_shR, p, v);
+    else if (c == 1) imageAtomicAdd(i_shG, p, v);
+    else imageAtomicAdd(i_shB, p, v);
+}
+#else
+// Without GL_NV_shader_atomic_float (AMD, Intel): the R32F volumes bound through r32ui views and the
+// float added by a compare-and-swap loop on its bits (bounded like Fig. B.1's; a write that loses
+// 255 races in a row is dropped, far beyond a voxel's writes in a frame).
+layout(binding = BINDING_IMG1, r32ui) uniform coherent uimage3D i_shR;
+layout(binding = BINDING_IMG2, r32ui) uniform coherent uimage3D i_shG;
+layout(binding = BINDING_IMG3, r32ui) uniform coherent uimage3D i_shB;
+uint casAdd(uint current, float v) { return floatBitsToUint(uintBitsToFloat(current) + v); }
+void addSh(int c, ivec3 p, float v) {
+    uint current = c == 0 ? imageLoad(i_shR, p).r : (c == 1 ? imageLoad(i_shG, p).r : imageLoad(i_shB, p).r);
+    for (int i = 0; i < 255; ++i) {
+        uint previous = c == 0 ? imageAtomicCompSwap(i_shR, p, current, casAdd(current, v))
+                      : (c == 1 ? imageAtomicCompSwap(i_shG, p, current, casAdd(current, v))
+                                : imageAtomicCompSwap(i_shB, p, current, casAdd(current, v)));
+        if (previous == current) break;
+        current = previous;
+    }
+}
+#endif
 layout(binding = BINDING_IMG4, r32ui) uniform coherent uimage3D i_count;
 #endif
 layout(binding = BINDING_IMG5, r8ui) uniform writeonly uimage3D i_binary;
@@ -84,9 +109,9 @@ void writeVoxel(ivec3 p, vec3 radiance) {
 #if VCT_STORAGE == VCT_STORAGE_SH_F32
     // Level 0 is isotropic (thesis 5.1.3: normal-initialised SH darkened the hierarchy): only the DC
     // terms receive writes; the sum of radiances is divided by the count in the normalisation pass.
-    imageAtomicAdd(i_shR, p, radiance.r);
-    imageAtomicAdd(i_shG, p, radiance.g);
-    imageAtomicAdd(i_shB, p, radiance.b);
+    addSh(0, p, radiance.r);
+    addSh(1, p, radiance.g);
+    addSh(2, p, radiance.b);
     imageAtomicAdd(i_count, p, 1u);
 #endif
 }

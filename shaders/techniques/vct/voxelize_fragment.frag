@@ -4,7 +4,7 @@
 // it with the YZ and ZX tests (lines 15-20 of Fig. 4.4, 14-20 of Fig. 4.5). The surface attributes
 // are those of the fragment (the column centre), so the radiance is injected once per fragment.
 // Defines: VCT_STORAGE, VCT_CONSERVATIVE. Writes images only (no colour output).
-#if VCT_STORAGE == 2  // VCT_STORAGE_SH_F32 (vct_shared.h is not included yet)
+#if VCT_STORAGE == 2 && VCT_FLOAT_ATOMICS  // SH_F32 (vct_shared.h is not included yet) with float atomics
 #extension GL_NV_shader_atomic_float : require
 #endif
 #define VCT_WRITE 1

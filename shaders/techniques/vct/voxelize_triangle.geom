@@ -7,7 +7,7 @@
 // Attributes per voxel are interpolated by hand (the thesis: "the triangle-parallel path must
 // interpolate attributes manually"): barycentrics of the voxel column's centre on the plane.
 // Defines: VCT_STORAGE, VCT_CONSERVATIVE (0/1), VCT_HYBRID (0/1). Emits no primitives.
-#if VCT_STORAGE == 2  // VCT_STORAGE_SH_F32 (vct_shared.h is not included yet)
+#if VCT_STORAGE == 2 && VCT_FLOAT_ATOMICS  // SH_F32 (vct_shared.h is not included yet) with float atomics
 #extension GL_NV_shader_atomic_float : require
 #endif
 #define VCT_WRITE 1

@@ -141,7 +141,8 @@ Expected<void> VctTechnique::buildPrograms() {
     const int storage = storageId();
     const std::string conservative = m_separability == "conservative" ? "1" : "0";
     std::vector<std::pair<std::string, std::string>> defines = {{"VCT_STORAGE", std::to_string(storage)},
-                                                                {"VCT_CONSERVATIVE", conservative}};
+                                                                {"VCT_CONSERVATIVE", conservative},
+                                                                {"VCT_FLOAT_ATOMICS", m_floatAtomics ? "1" : "0"}};
     auto with = [&](std::vector<std::pair<std::string, std::string>> extra) {
         auto d = defines;
         d.insert(d.end(), extra.begin(), extra.end());
@@ -215,8 +216,9 @@ Expected<void> VctTechnique::setup(const SetupContext& ctx) {
         return makeError("technique vct injects at most {} lights at voxelization; scene '{}' has {}", VCT_MAX_LIGHTS, ctx.scene.name,
                          ctx.scene.lights.size());
     const int storage = storageId();
-    if (!m_binary && storage == VCT_STORAGE_SH_F32 && !epoxy_has_gl_extension("GL_NV_shader_atomic_float"))
-        return makeError("setting storage=sh-f32 needs GL_NV_shader_atomic_float (float image atomics), which this GL lacks; use sh-u8");
+    // SH-F32 adds floats atomically: GL_NV_shader_atomic_float where the GL has it, else a compare-and-
+    // swap loop through r32ui views of the same volumes (volume.glsl).
+    m_floatAtomics = epoxy_has_gl_extension("GL_NV_shader_atomic_float");
     // Memory: every level of every volume (x 8/7), the level-0-only count volume, the mutexes.
     const double voxels0 = std::pow(static_cast<double>(N), 3.0);
     const double chain = 8.0 / 7.0;
@@ -271,8 +273,11 @@ Expected<void> VctTechnique::allocate(const SetupContext&) {
         d.format = format;
         d.width = d.height = d.depth = N;
         d.levels = levels;
-        d.minFilter = levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST;
-        d.magFilter = levels > 1 ? GL_LINEAR : GL_NEAREST;
+        // Integer volumes (mutexes, counts) take NEAREST: with other filters an integer texture is
+        // incomplete (GL 4.5 §8.17) and image access to it invalid (§8.26).
+        const bool integer = format == GL_R32UI || format == GL_R8UI;
+        d.minFilter = levels > 1 && !integer ? GL_LINEAR_MIPMAP_LINEAR : (levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+        d.magFilter = levels > 1 && !integer ? GL_LINEAR : GL_NEAREST;
         // Clamp to edge (the TextureDesc default): a sample whose footprint crosses the grid's side
         // reads the boundary texels, where the scene's bounding walls lie (a zero border lets cones
         // through those walls at coarse levels: measured 12-22 % darker). Cones end where their near
@@ -436,7 +441,8 @@ void VctTechnique::voxelize(FrameContext& ctx) {
     m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
     glBindImageTexture(BINDING_IMG0, m_iso.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     if (storage == VCT_STORAGE_SH_F32 && !m_binary) {
-        for (int c = 0; c < 3; ++c) glBindImageTexture(BINDING_IMG1 + c, m_volumes[4 * c].id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+        for (int c = 0; c < 3; ++c)
+            glBindImageTexture(BINDING_IMG1 + c, m_volumes[4 * c].id(), 0, GL_TRUE, 0, GL_READ_WRITE, m_floatAtomics ? GL_R32F : GL_R32UI);
         glBindImageTexture(BINDING_IMG4, m_count.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     }
     glBindImageTexture(BINDING_IMG5, m_binaryVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);

@@ -104,6 +104,7 @@ private:
     int m_memoryBudgetMiB = 2048;
 
     int m_levels = 1;
+    bool m_floatAtomics = true;   // GL_NV_shader_atomic_float present (else SH-F32 adds by CAS loops)
     bool m_sparseActive = false;  // sparse path on (off after an overflow of a list)
     bool m_frameSparse = false;   // this frame mipmapped sparsely (collectCounters reads its lists)
     bool m_listsValid = false;    // the lists hold every voxel the last frame wrote (sparse clear possible)
