@@ -139,20 +139,11 @@ Mesh ceilingWithOpening(const CeilingRect& light) {
     return mb.take();
 }
 
-// ceiling=glossy: the white ceiling with a strong GGX lobe on top of its Lambert term (docs/scene.md's
-// additive BRDF), so that the techniques' glossy paths (vct's specular cone, the reference's GGX lobe)
-// have a glossy bounce to reproduce: seen from the camera it mirrors the spot's hot spot on the floor,
-// blurred. F0 0.5 is far above a dielectric's 0.04 (chosen so the glossy bounce is a sizeable share of
-// the ceiling's light); the diffuse term is the data's white ceiling unchanged.
-constexpr float kGlossyCeilingF0 = 0.5f;
-constexpr float kGlossyCeilingRoughness = 0.3f;  // perceptual; GGX alpha = 0.09
-
 struct CornellOptions {
     Lighting lighting = Lighting::Spot;
     CeilingRect areaLight = kDataLight;          // Area: the light's rectangle and the ceiling's opening
     glm::vec3 areaRadiance = kAreaRadiance;      // Area: W/(m^2 sr)
     bool blocks = true;                          // the data's short and tall blocks
-    bool glossyCeiling = false;                  // ceiling=glossy: a GGX lobe on the ceiling (kGlossyCeiling*)
 };
 
 Scene cornellBox(const std::string& name, const CornellOptions& options) {
@@ -172,12 +163,6 @@ Scene cornellBox(const std::string& name, const CornellOptions& options) {
         return static_cast<uint32_t>(s.materials.size() - 1);
     };
     const uint32_t white = material("white", kWhiteAlbedo);
-    uint32_t ceilingMaterial = white;
-    if (options.glossyCeiling) {
-        ceilingMaterial = material("glossy-ceiling", kWhiteAlbedo);
-        s.materials[ceilingMaterial].specularF0 = kGlossyCeilingF0;
-        s.materials[ceilingMaterial].roughness = kGlossyCeilingRoughness;
-    }
     const uint32_t red = material("red", kRedAlbedo);
     const uint32_t green = material("green", kGreenAlbedo);
 
@@ -198,7 +183,7 @@ Scene cornellBox(const std::string& name, const CornellOptions& options) {
     } else {
         object(wallMesh("ceiling", {556.0f, 548.8f, 0.0f}, {556.0f, 548.8f, 559.2f}, {0.0f, 548.8f, 559.2f},
                         {0.0f, 548.8f, 0.0f}),
-               ceilingMaterial);
+               white);
     }
     object(wallMesh("back", {549.6f, 0.0f, 559.2f}, {0.0f, 0.0f, 559.2f}, {0.0f, 548.8f, 559.2f},
                     {556.0f, 548.8f, 559.2f}),
@@ -246,12 +231,7 @@ Scene cornellBox(const std::string& name, const CornellOptions& options) {
 
 }  // namespace
 
-Expected<Scene> buildCornellBox(const SceneParams& params) {
-    BOUNCE_TRY(const std::string ceiling, choiceParam(params, "cornell-box", "ceiling", "diffuse", {"diffuse", "glossy"}));
-    CornellOptions options;
-    options.glossyCeiling = ceiling == "glossy";
-    return cornellBox("cornell-box", options);
-}
+Expected<Scene> buildCornellBox(const SceneParams&) { return cornellBox("cornell-box", {}); }
 
 Expected<Scene> buildCornellBoxArea(const SceneParams&) {
     CornellOptions options;

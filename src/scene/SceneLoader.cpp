@@ -23,8 +23,7 @@ const std::vector<BuiltinEntry>& registry() {
     static const std::vector<BuiltinEntry> entries = {
         {{"cornell-box",
           "Cornell box (measured geometry and albedos), spot light under the ceiling pointing down",
-          {{"ceiling", "diffuse: the data's white ceiling, or glossy: the white ceiling with a GGX lobe (F0 0.5, "
-                       "roughness 0.3) mirroring the spot's pool on the floor, for the techniques' glossy paths"}}},
+          {}},
          buildCornellBox},
         {{"cornell-box-area", "Cornell box lit by its rectangular ceiling area light", {}}, buildCornellBoxArea},
         {{"cornell-box-dynamic",
