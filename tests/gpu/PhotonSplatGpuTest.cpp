@@ -69,10 +69,11 @@ TEST_F(PhotonSplatGpuTest, OnePhotonSplatsItsFootprint) {
 TEST_F(PhotonSplatGpuTest, TheBundleDepthMapShadowsAReceiverBehindAnOccluder) {
     constexpr int kSize = 96;
     Scene scene = litPlane();
-    // A small square 0.3 m above the plane, 0.4 m wide, inside the photon's 1 m bundle.
+    // A small square 0.3 m above the plane, 0.4 m wide, on the +z side of the photon's 1.6 m bundle
+    // only: a depth map mirrored across the bundle's axis would shadow the -z side instead.
     Mesh blocker;
     blocker.name = "blocker";
-    blocker.positions = {{-0.2f, 0.3f, -0.2f}, {0.2f, 0.3f, -0.2f}, {0.2f, 0.3f, 0.2f}, {-0.2f, 0.3f, 0.2f}};
+    blocker.positions = {{-0.2f, 0.3f, 0.0f}, {0.2f, 0.3f, 0.0f}, {0.2f, 0.3f, 0.4f}, {-0.2f, 0.3f, 0.4f}};
     blocker.normals.assign(4, glm::vec3(0, 1, 0));
     blocker.indices = {0, 2, 1, 0, 3, 2};
     scene.meshes.push_back(blocker);
@@ -83,8 +84,8 @@ TEST_F(PhotonSplatGpuTest, TheBundleDepthMapShadowsAReceiverBehindAnOccluder) {
     ASSERT_TRUE(finalizeScene(scene).ok());
     // A photon high on the -x side sends its bundle diagonally down along (1, -1, 0)/sqrt(2): its own
     // ray passes beside the blocker (x = 0.3 at the blocker's height) and hits the plane at x = 0.6;
-    // the blocker's shadow along the bundle falls on the plane at x in [0.1, 0.5], |z| < 0.2, where
-    // the camera (straight above) sees the plane.
+    // the blocker's shadow along the bundle falls on the plane at x in [0.1, 0.5], z in [0, 0.4],
+    // where the camera (straight above) sees the plane.
     const glm::vec3 w = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
     const photonsplat::Photon photon{{-0.9f, 1.5f, 0.0f}, glm::vec3(1.0f), w, {0.0f, 1.0f, 0.0f}};
     auto p = makePipeline(scene, "photon-splat", {{"estimate", "flux"}, {"filter", "box"}, {"mapSize", "1.6"}, {"stepBack", "1.0"},
@@ -100,10 +101,11 @@ TEST_F(PhotonSplatGpuTest, TheBundleDepthMapShadowsAReceiverBehindAnOccluder) {
     };
     // Lit plane: rho / pi * Phi / (2h)^2 * cos 45 degrees.
     const float level = gputest::kPlaneAlbedo / glm::pi<float>() / (1.6f * 1.6f) * 0.70710678f;
-    EXPECT_NEAR(at(0.3f, 0.55f), level, 1e-3f * level);  // beside the shadow, inside the bundle
+    EXPECT_NEAR(at(0.3f, 0.6f), level, 1e-3f * level);   // beside the shadow, inside the bundle
+    EXPECT_NEAR(at(0.3f, -0.2f), level, 1e-3f * level);  // the mirror image of the shadow: lit
     EXPECT_NEAR(at(1.0f, 0.0f), level, 1e-3f * level);   // past the shadow
-    EXPECT_EQ(at(0.3f, 0.0f), 0.0f);                      // in the blocker's shadow
-    EXPECT_EQ(at(0.4f, 0.1f), 0.0f);
+    EXPECT_EQ(at(0.3f, 0.2f), 0.0f);                      // in the blocker's shadow
+    EXPECT_EQ(at(0.4f, 0.3f), 0.0f);
 }
 
 TEST_F(PhotonSplatGpuTest, FluxEstimateAgainstTheOneBounceReference) {

@@ -253,7 +253,15 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                 m_mapFbo.setDrawBuffers(0);
                 m_mapFbo.bind();
                 render::View view;
-                view.viewFromWorld = glm::lookAt(b.origin, b.origin + b.direction, b.up);
+                // Rows right, up, -w: the map's texel (u, v) is the splat's (right, up) offset.
+                glm::mat4 vfw(1.0f);
+                for (int c = 0; c < 3; ++c) {
+                    vfw[c][0] = b.right[c];
+                    vfw[c][1] = b.up[c];
+                    vfw[c][2] = -b.direction[c];
+                }
+                vfw[3] = glm::vec4(-glm::dot(b.right, b.origin), -glm::dot(b.up, b.origin), glm::dot(b.direction, b.origin), 1.0f);
+                view.viewFromWorld = vfw;
                 view.clipFromView = glm::ortho(-m_half, m_half, -m_half, m_half, 0.0f, m_depth);
                 view.eye = b.origin;
                 view.nearPlane = 0.0f;
