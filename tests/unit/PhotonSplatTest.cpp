@@ -110,6 +110,53 @@ TEST(PhotonSplatInjection, SecondBouncesCarryTheAlbedoAgainAndSeedsRepeat) {
     for (size_t i = 0; i < one.size(); ++i) EXPECT_EQ(again[i].position, one[i].position);
 }
 
+TEST(PhotonSplatInjection, EmissiveSurfacesShootTheirFlux) {
+    // The furnace room: a closed 2 m cube whose inner faces emit Le = 1 and have albedo 0.6, no
+    // lights. Every photon leaves a face and hits another: first-hit power rho pi Le A exactly in
+    // sum (every photon carries the same power, uniform Le), A = 6 faces of 4 m^2.
+    Scene room = testscenes::furnaceRoom(0.6f, 1.0f);
+    ASSERT_TRUE(finalizeScene(room).ok());
+    const std::vector<Photon> photons = shoot(room, 4000);
+    ASSERT_EQ(photons.size(), 4000u);
+    const float flux = glm::pi<float>() * 1.0f * 24.0f;
+    EXPECT_NEAR(totalPower(photons).r, 0.6f * flux, 1e-3f * flux);
+    for (const Photon& p : photons) EXPECT_LT(glm::length(p.position), std::sqrt(3.0f) + 1e-3f);  // inside the cube
+}
+
+TEST(PhotonSplatInjection, TexturedAreaLightsCarryTheirTexturesFlux) {
+    // A 1 m^2 area light 1 m above the plane, facing down, textured left half white, right half black:
+    // the emitted flux is pi L A times the texture's mean (1/2), and no photon leaves the black half.
+    Light area;
+    area.type = LightType::Area;
+    area.position = {0.0f, 1.0f, 0.0f};
+    area.edgeU = {1.0f, 0.0f, 0.0f};
+    area.edgeV = {0.0f, 0.0f, 1.0f};  // normal cross(u, v) = -y: faces the plane
+    area.radiance = glm::vec3(2.0f);
+    Scene scene = planeWith(Light{});
+    scene.lights.clear();
+    Image halves(2, 1);
+    halves.at(0, 0) = glm::vec3(1.0f);
+    halves.at(1, 0) = glm::vec3(0.0f);
+    scene.textures.push_back({"halves", halves});
+    area.texture.kind = AreaTexture::Kind::Images;
+    area.texture.frames = {static_cast<uint32_t>(scene.textures.size() - 1)};
+    scene.lights.push_back(area);
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    const std::vector<Photon> photons = shoot(scene, 20000);
+    // Cosine directions from 1 m over a 40 m plane: all but ~0.06 % land (cos^2 of the escaping
+    // angles). Photons on the white half carry 2 pi L A / n each, so the sum is their count's
+    // binomial noise: 0.7 % standard error at n = 20,000; 3.5 % is five of it (a texture ignored
+    // doubles the sum, a mean applied twice halves it).
+    const float expected = kRho * glm::pi<float>() * 2.0f * 1.0f * 0.5f;
+    EXPECT_NEAR(totalPower(photons).r, expected, 0.035f * expected);
+    EXPECT_GT(photons.size(), 9650u);  // half the 20,000 start on black texels and are not shot (5 sigma)
+    EXPECT_LT(photons.size(), 10350u);
+    // Two-sided: twice the flux, half of it (the back, facing up) escapes the open plane; a quarter of
+    // the photons land, each with 4 pi L A / n: 1.2 % standard error, bound five of it.
+    scene.lights[0].twoSided = true;
+    EXPECT_NEAR(totalPower(shoot(scene, 20000)).r, expected, 0.06f * expected);
+}
+
 TEST(PhotonSplatStratification, ConservesPowerAndMergesSparseBlocks) {
     // 2x2x2 cells over [0, 2]^3 (one block): seven cells with 3 photons, one cell with 1.
     std::vector<Photon> photons;

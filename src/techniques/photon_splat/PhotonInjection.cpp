@@ -4,6 +4,7 @@
 #include "reference/Rng.h"
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
+#include "scene/AreaTexture.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -26,9 +27,10 @@ glm::vec3 uniformSphere(float u1, float u2) {
 }
 
 // Flux a light sends into the scene (W per channel). Directional lights: the irradiance through the
-// disc that covers the scene's bounding sphere.
-glm::vec3 emittedFlux(const Light& l, float sceneRadius) {
+// disc that covers the scene's bounding sphere. A textured area light: times its texture's mean now.
+glm::vec3 emittedFlux(const Scene& scene, const Light& l, float sceneRadius, float time) {
     if (l.type == LightType::Directional) return l.irradiance * (kPi * sceneRadius * sceneRadius);
+    if (l.type == LightType::Area) return l.flux() * areaTextureMean(scene, l, time);
     return l.flux();
 }
 
@@ -36,9 +38,19 @@ struct Emission {
     glm::vec3 origin, direction, power;
 };
 
-// One emitted photon of light l with numbers u[0..3]; `share` is its share (1/n) of the light's flux.
-Emission emit(const Light& l, const float u[4], glm::vec3 centre, float radius, glm::vec3 share, uint32_t n) {
-    Emission e{l.position, glm::vec3(0.0f, -1.0f, 0.0f), share};
+// The texel of a textured area light at (u, v) (nearest, as the reference reads it: column from u,
+// row 0 at v = 1; EmitterTexture::texelAt).
+glm::vec3 areaTexel(const Image& image, float u, float v) {
+    const int c = std::clamp(static_cast<int>(u * static_cast<float>(image.width())), 0, image.width() - 1);
+    const int r = std::clamp(static_cast<int>((1.0f - v) * static_cast<float>(image.height())), 0, image.height() - 1);
+    return image.at(c, r);
+}
+
+// One emitted photon of light l with random numbers from `rng`; the photon carries the light's flux
+// `flux` divided by the n photons it shoots (an estimate whose sum over the n is the flux).
+Emission emit(const Light& l, Rng& rng, glm::vec3 centre, float radius, glm::vec3 flux, uint32_t n, const Image* texture) {
+    const float u[4] = {rng.next(), rng.next(), rng.next(), rng.next()};
+    Emission e{l.position, glm::vec3(0.0f, -1.0f, 0.0f), flux / static_cast<float>(n)};
     switch (l.type) {
         case LightType::Point: e.direction = uniformSphere(u[0], u[1]); break;
         case LightType::Spot: {
@@ -65,13 +77,87 @@ Emission emit(const Light& l, const float u[4], glm::vec3 centre, float radius, 
             break;
         }
         case LightType::Area: {
+            // Uniform point, cosine direction about the emitting side: power pi L A / n per side (times
+            // the texel there for a textured light: uniform points weighted by the texture estimate
+            // pi A mean(L texel), the flux emittedFlux() splits photons by). A two-sided light picks a
+            // side at random; its back shows the texture mirrored in u (Scene.h).
+            const bool back = l.twoSided && rng.next() < 0.5f;
             e.origin = l.position + (u[0] - 0.5f) * l.edgeU + (u[1] - 0.5f) * l.edgeV;
-            const Frame f(l.areaNormal());
+            const Frame f(back ? -l.areaNormal() : l.areaNormal());
             e.direction = f.toWorld(cosineHemisphere(u[2], u[3]));
+            const glm::vec3 base = l.radiance * (kPi * l.area() * (l.twoSided ? 2.0f : 1.0f)) / static_cast<float>(n);
+            e.power = texture ? base * areaTexel(*texture, back ? 1.0f - u[0] : u[0], u[1]) : base;
             break;
         }
     }
     return e;
+}
+
+// The triangles of an object whose material emits (Material::emission, W/(m^2 sr)), in world space at
+// one time, with the cumulative areas that pick one uniformly by area.
+struct EmissiveObject {
+    const Object* object = nullptr;
+    const Material* material = nullptr;
+    std::vector<glm::vec3> corners;  // 3 per triangle, world space
+    std::vector<glm::vec2> uvs;      // 3 per triangle (zero without mesh uvs)
+    std::vector<double> cdf;         // cumulative world areas, m^2
+    glm::vec3 flux{0.0f};            // estimate used to split photons: sides pi A Le times the texture's mean
+};
+
+std::vector<EmissiveObject> emissiveObjects(const Scene& scene, float time) {
+    std::vector<EmissiveObject> out;
+    for (const Object& o : scene.objects) {
+        const Material& m = scene.materials[o.material];
+        if (!(maxComponent(m.emission) > 0.0f)) continue;
+        const Mesh& mesh = scene.meshes[o.mesh];
+        const glm::mat4 world = o.worldFromObject(time);
+        EmissiveObject e;
+        e.object = &o;
+        e.material = &m;
+        double area = 0.0;
+        for (size_t t = 0; t < mesh.triangleCount(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t i = mesh.indices[3 * t + static_cast<size_t>(k)];
+                e.corners.push_back(glm::vec3(world * glm::vec4(mesh.positions[i], 1.0f)));
+                e.uvs.push_back(i < mesh.uvs.size() ? mesh.uvs[i] : glm::vec2(0.0f));
+                if (k == 2) {
+                    const size_t c = e.corners.size() - 3;
+                    area += 0.5 * glm::length(glm::cross(e.corners[c + 1] - e.corners[c], e.corners[c + 2] - e.corners[c]));
+                    e.cdf.push_back(area);
+                }
+            }
+        if (!(area > 0.0)) continue;
+        const glm::vec3 mean = m.emissionTexture >= 0 ? imageMean(scene.textures[static_cast<size_t>(m.emissionTexture)].image) : glm::vec3(1.0f);
+        e.flux = m.emission * mean * static_cast<float>(kPi * area * (m.twoSided ? 2.0 : 1.0));
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
+// One photon of an emissive object: a triangle by area, a uniform point on it, a cosine direction
+// about its front (a random side when two-sided); power sides pi A Le texel(uv) / n (A the object's
+// area), so the n photons' sum estimates the object's flux.
+Emission emitFromObject(const Scene& scene, const EmissiveObject& e, Rng& rng, uint32_t n) {
+    const double total = e.cdf.back();
+    const double pick = static_cast<double>(rng.next()) * total;
+    const size_t t = std::min<size_t>(static_cast<size_t>(std::upper_bound(e.cdf.begin(), e.cdf.end(), pick) - e.cdf.begin()), e.cdf.size() - 1);
+    const glm::vec2 b = uniformTriangle(rng.next(), rng.next());
+    const glm::vec3 a = e.corners[3 * t], p1 = e.corners[3 * t + 1], p2 = e.corners[3 * t + 2];
+    glm::vec3 normal = glm::normalize(glm::cross(p1 - a, p2 - a));
+    const bool twoSided = e.material->twoSided;
+    if (twoSided && rng.next() < 0.5f) normal = -normal;
+    Emission out;
+    out.origin = a + b.x * (p1 - a) + b.y * (p2 - a);
+    const Frame f(normal);
+    out.direction = f.toWorld(cosineHemisphere(rng.next(), rng.next()));
+    out.origin = offsetRayOrigin(out.origin, normal);
+    glm::vec3 le = e.material->emission;
+    if (e.material->emissionTexture >= 0) {
+        const glm::vec2 uv = e.uvs[3 * t] + b.x * (e.uvs[3 * t + 1] - e.uvs[3 * t]) + b.y * (e.uvs[3 * t + 2] - e.uvs[3 * t]);
+        le *= lookupBilinearRepeat(scene.textures[static_cast<size_t>(e.material->emissionTexture)].image, uv);
+    }
+    out.power = le * static_cast<float>(kPi * total * (twoSided ? 2.0 : 1.0)) / static_cast<float>(n);
+    return out;
 }
 
 glm::vec3 albedoAt(const Scene& scene, const RayHit& hit) {
@@ -89,23 +175,31 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
     scene.bounds(time, lo, hi);
     const glm::vec3 centre = 0.5f * (lo + hi);
     const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
-    // Lights at time t, photons split over them by flux (luminance).
+    // Emitters at time t (the lights, then the objects whose material emits), photons split over them
+    // by flux (luminance).
     std::vector<Light> lights;
     for (const Light& l : scene.lights) lights.push_back(l.at(time));
+    const std::vector<EmissiveObject> objects = emissiveObjects(scene, time);
+    std::vector<Image> scratch(lights.size());
+    std::vector<const Image*> textures;
     std::vector<float> weight;
-    for (const Light& l : lights) weight.push_back(std::max(luminance(emittedFlux(l, radius)), 0.0f));
+    for (size_t li = 0; li < lights.size(); ++li) {
+        textures.push_back(lights[li].type == LightType::Area ? areaTextureAt(scene, lights[li], time, scratch[li]) : nullptr);
+        weight.push_back(std::max(luminance(emittedFlux(scene, lights[li], radius, time)), 0.0f));
+    }
+    for (const EmissiveObject& e : objects) weight.push_back(std::max(luminance(e.flux), 0.0f));
     const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
     if (!(total > 0.0f) || settings.photons == 0) return out;
-    for (size_t li = 0; li < lights.size(); ++li) {
-        const Light& l = lights[li];
-        const uint32_t n = static_cast<uint32_t>(std::lround(settings.photons * weight[li] / total));
+    for (size_t ei = 0; ei < weight.size(); ++ei) {
+        const uint32_t n = static_cast<uint32_t>(std::lround(settings.photons * weight[ei] / total));
         if (n == 0) continue;
-        const glm::vec3 share = emittedFlux(l, radius) / static_cast<float>(n);
         for (uint32_t i = 0; i < n; ++i) {
-            Rng rng(settings.seed, li, i);
-            const float u[4] = {rng.next(), rng.next(), rng.next(), rng.next()};
-            Emission e = emit(l, u, centre, radius, share, n);
+            Rng rng(settings.seed, ei, i);
+            const Emission e = ei < lights.size()
+                                   ? emit(lights[ei], rng, centre, radius, emittedFlux(scene, lights[ei], radius, time), n, textures[ei])
+                                   : emitFromObject(scene, objects[ei - lights.size()], rng, n);
             glm::vec3 origin = e.origin, dir = e.direction, power = e.power;
+            if (!(maxComponent(power) > 0.0f)) continue;  // a black texel
             for (uint32_t b = 0; b < settings.bounces; ++b) {
                 const std::optional<RayHit> hit = caster.closestHit(origin, dir);
                 if (!hit) break;
