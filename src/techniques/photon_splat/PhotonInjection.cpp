@@ -10,8 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
-#include <unordered_map>
 
 namespace bounce::photonsplat {
 
@@ -227,60 +227,64 @@ std::vector<Photon> stratify(const std::vector<Photon>& photons, glm::vec3 lo, g
     const int g = std::max(gridSize, 2) & ~1;  // whole 2x2x2 blocks
     const glm::vec3 extent = glm::max(hi - lo, glm::vec3(1e-6f));
     std::vector<Photon> out;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> cells;  // dense in the thesis, sparse storage here
-    auto cellOf = [&](glm::vec3 p, glm::ivec3& c) {
-        c = glm::ivec3(glm::floor((p - lo) / extent * static_cast<float>(g)));
-        return glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThan(c, glm::ivec3(g)));
+    // The grid: one entry per photon inside it, sorted so that each 2x2x2 block's photons are
+    // contiguous, and within a block each cell's (the thesis indexes its array by grid cell; bounce
+    // sorts, so the grid takes memory per photon, not per cell).
+    struct Entry {
+        uint64_t key;  // block index * 8 + cell within the block
+        uint32_t photon;
     };
+    std::vector<Entry> grid;
+    grid.reserve(photons.size());
+    const uint64_t blocksPerSide = static_cast<uint64_t>(g / 2);
     for (uint32_t i = 0; i < photons.size(); ++i) {
-        glm::ivec3 c;
-        if (!cellOf(photons[i].position, c)) {
+        const glm::vec3 p = photons[i].position;
+        if (!glm::all(glm::greaterThanEqual(p, lo)) || !glm::all(glm::lessThanEqual(p, hi))) {
             out.push_back(photons[i]);  // outside the grid: kept (the thesis ignores or cascades them)
             continue;
         }
-        cells[static_cast<uint64_t>(c.x) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(c.y) + static_cast<uint64_t>(g) * c.z)].push_back(i);
+        // The grid is closed: a photon on its upper faces (a ceiling on the scene's bounds) is in the last cell.
+        const glm::ivec3 c = glm::min(glm::ivec3(glm::floor((p - lo) / extent * static_cast<float>(g))), glm::ivec3(g - 1));
+        const glm::uvec3 b(c / 2), k(c % 2);
+        const uint64_t block = b.x + blocksPerSide * (b.y + blocksPerSide * static_cast<uint64_t>(b.z));
+        grid.push_back({block * 8 + (k.x + 2 * k.y + 4 * k.z), i});
     }
+    std::sort(grid.begin(), grid.end(), [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.photon < b.photon; });
     size_t merged = 0;
-    auto combine = [&](const std::vector<uint32_t>& members, uint64_t key) {
-        Rng rng(seed, key, members.size());
-        const uint32_t pick = members[std::min<size_t>(members.size() - 1, static_cast<size_t>(rng.next() * members.size()))];
-        Photon p = photons[pick];
+    auto combine = [&](size_t first, size_t last, uint64_t key) {
+        Rng rng(seed, key, last - first);
+        const size_t pick = first + std::min(last - first - 1, static_cast<size_t>(rng.next() * static_cast<float>(last - first)));
+        Photon p = photons[grid[pick].photon];
         p.power = glm::vec3(0.0f);
-        for (uint32_t m : members) p.power += photons[m].power;
+        for (size_t e = first; e < last; ++e) p.power += photons[grid[e].photon].power;
         out.push_back(p);
     };
-    for (int bz = 0; bz < g; bz += 2)
-        for (int by = 0; by < g; by += 2)
-            for (int bx = 0; bx < g; bx += 2) {
-                const std::vector<uint32_t>* block[8];
-                bool sparse = false, any = false;
-                for (int k = 0; k < 8; ++k) {
-                    const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + ((k >> 2) & 1);
-                    auto it = cells.find(static_cast<uint64_t>(x) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(y) + static_cast<uint64_t>(g) * z));
-                    block[k] = it == cells.end() ? nullptr : &it->second;
-                    if (block[k]) {
-                        any = true;
-                        if (static_cast<int>(block[k]->size()) < threshold) sparse = true;
-                    }
-                }
-                if (!any) continue;
-                const uint64_t key = static_cast<uint64_t>(bx) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(by) + static_cast<uint64_t>(g) * bz);
-                if (sparse) {
-                    std::vector<uint32_t> members;
-                    for (auto* c : block)
-                        if (c) members.insert(members.end(), c->begin(), c->end());
-                    combine(members, key);
-                    ++merged;
-                } else {
-                    for (int k = 0; k < 8; ++k)
-                        if (block[k]) combine(*block[k], key * 8 + static_cast<uint64_t>(k));
-                }
+    for (size_t first = 0; first < grid.size();) {
+        const uint64_t block = grid[first].key / 8;
+        size_t last = first;
+        int count[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        while (last < grid.size() && grid[last].key / 8 == block) ++count[grid[last++].key % 8];
+        // §4.2: "If one of those cells contains less photons than the threshold parameter, the colors
+        // of all 8 cells are combined": an empty cell holds 0 photons, so it counts.
+        const bool sparse = std::any_of(count, count + 8, [&](int n) { return n < threshold; });
+        if (sparse) {
+            combine(first, last, block * 8);
+            ++merged;
+        } else {
+            for (size_t cell = first; cell < last;) {
+                size_t end = cell;
+                while (end < last && grid[end].key == grid[cell].key) ++end;
+                combine(cell, end, grid[cell].key + 1);
+                cell = end;
             }
+        }
+        first = last;
+    }
     if (stats) {
         stats->inputPhotons = photons.size();
         stats->outputPhotons = out.size();
         stats->mergedBlocks = merged;
-        stats->gridBytes = static_cast<size_t>(g) * g * g * kThesisCellBytes;
+        stats->gridBytes = grid.capacity() * sizeof(Entry);
     }
     return out;
 }
@@ -301,15 +305,30 @@ std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCa
     std::vector<std::optional<RayHit>> hits(photons.size());
     caster.closestHits(rays, hits);
     std::vector<Bundle> out;
+    const bool keepEscaped = glm::all(glm::lessThanEqual(settings.lo, settings.hi));
     for (size_t i = 0; i < photons.size(); ++i) {
-        if (!hits[i]) continue;
         Bundle b;
-        b.hitDistance = hits[i]->t;
-        const float back = std::min(settings.stepBack, 0.5f * b.hitDistance);
         b.direction = photons[i].direction;
-        b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
         bundleAxes(b.direction, b.right, b.up);
         b.power = photons[i].power;
+        b.photon = static_cast<uint32_t>(i);
+        if (hits[i]) {
+            b.hitDistance = hits[i]->t;
+            b.hitNormal = hits[i]->frontFacing ? hits[i]->geometricNormal : -hits[i]->geometricNormal;
+        } else {
+            if (!keepEscaped) continue;
+            // Where the ray leaves the box (slab test; the photon lies inside it).
+            float exit = std::numeric_limits<float>::infinity();
+            for (int k = 0; k < 3; ++k)
+                if (b.direction[k] != 0.0f)
+                    exit = std::min(exit, ((b.direction[k] > 0.0f ? settings.hi[k] : settings.lo[k]) - photons[i].position[k]) / b.direction[k]);
+            if (!(exit > 0.0f) || !std::isfinite(exit)) continue;
+            b.hitDistance = exit;
+            b.hitNormal = -b.direction;
+            b.escaped = true;
+        }
+        const float back = std::min(settings.stepBack, 0.5f * b.hitDistance);
+        b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
         out.push_back(b);
     }
     return out;

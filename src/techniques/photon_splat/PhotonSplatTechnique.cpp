@@ -43,17 +43,28 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace bounce {
 
 namespace {
 
 // Defaults tied to the scene's size, for settings given as 0 (the document leaves them to the artist).
-constexpr float kAutoMapSizeFraction = 0.1f;   // bundle width 2h = a tenth of the scene diagonal
-constexpr float kAutoStepBackFraction = 0.25f;  // b = h / 4: close to the hit, as Fig. 4 draws it
-constexpr float kAutoDepthFactor = 2.0f;        // D = b + 2 (2h): receivers up to twice the width past the hit
-constexpr float kAutoToleranceTexels = 2.0f;    // depth tolerance: two map texels of slope
+constexpr float kAutoMapSizeFraction = 0.05f;  // bundle width 2h = a twentieth of the scene diagonal (bias/noise, measured: docs)
+constexpr float kAutoToleranceTexels = 0.05f;  // depth tolerance past the receiver plane: 1/20 texel (float rounding, curvature)
+constexpr float kEmitterOffsetFraction = 1e-4f;  // emitter plane offset: 1e-4 of the scene diagonal (0.1 mm per metre)
+constexpr uint32_t kClusterTriangles = 64;     // triangles per culling cluster
+constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels (64 MB of DEPTH32F)
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
+constexpr int kDepthClipPlanes = 7;            // depth.vert's clip distances: tile (4), near, far, emitter
+
+struct DrawCommand {  // DrawElementsIndirectCommand
+    GLuint count, instanceCount, firstIndex;
+    GLint baseVertex;
+    GLuint baseInstance;
+};
 
 template <size_t N>
 int indexOf(const std::array<std::string_view, N>& list, std::string_view s) {
@@ -72,20 +83,20 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("injection", m_injection, "rays: photons shot from the lights through the ray-casting service (the document's method A); rsm: the regular VPLs of a reflective shadow map (its method B for a GPU pipeline)", kInjections);
     v.field("rsmSize", m_rsmSize, "RSM resolution per side with injection=rsm (per cube face for point/area lights)", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer with injection=rsm (must divide rsmSize): vplGrid^2 photons per layer", 1, 256);
-    v.field("photons", m_photonCount, "photons shot from the lights per frame (document: 2,500-50,000)", 1, 1 << 20);
+    v.field("photons", m_photonCount, "photons shot from the emitters per frame (document: 2,500-50,000; default 8192: within bounds on every built-in scene, docs)", 1, 1 << 20);
     v.field("bounces", m_bounces, "diffuse hits at which photons are stored (1: single bounce, as implemented in the document)", 1, 8);
     v.field("seed", m_seed, "random seed of the photon paths", 0, 1 << 30);
     v.field("reseed", m_reseed, "new photon paths every frame (seed + frame): converges over frames, flickers; off = the same paths every frame");
     v.field("stratify", m_stratify, "3D stratification of the photons (document 3.2.1 / 4.2)");
     v.field("gridSize", m_gridSize, "stratification cells per side (even; document Fig. 9: 16)", 2, 256);
-    v.field("threshold", m_threshold, "a 2x2x2 block with a non-empty cell under this many photons is merged (document Fig. 3: 2)", 1, 1 << 20);
-    v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a tenth of the scene diagonal", 0.0f, 1.0e6f);
-    v.field("mapDepth", m_mapDepth, "bundle depth D, metres; 0 = b + 2 mapSize", 0.0f, 1.0e6f);
-    v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres; 0 = mapSize / 8", 0.0f, 1.0e6f);
+    v.field("threshold", m_threshold, "a 2x2x2 block with a cell (an empty one too, as 4.2 words the rule) under this many photons is merged (document Fig. 3: 2)", 1, 1 << 20);
+    v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a twentieth of the scene diagonal", 0.0f, 1.0e6f);
+    v.field("mapDepth", m_mapDepth, "bundle depth D past its near plane, metres; 0 = past the scene's bounding box", 0.0f, 1.0e6f);
+    v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres (the near plane then lies parallel to the hit surface); 0 = the hit distance d: the bundle starts at its photon", 0.0f, 1.0e6f);
     v.field("mapResolution", m_mapResolution, "texels per side of each bundle's depth map (document: 4 and 32 tested)", 4, 32);
-    v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver up to this far behind the stored depth is lit, metres; 0 = two texels", 0.0f, 1.0e6f);
+    v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver whose plane lies up to this far behind the stored depth at the texel's centre is lit, metres; 0 = 1/20 texel", 0.0f, 1.0e6f);
     v.field("filter", m_filter, "splat weight over the cross-section: gaussian (sigma = h/2), tent, box (document Fig. 6)", kFilters);
-    v.field("estimate", m_estimate, "normalized: sum(w S)/sum(w) times exposure (the document); flux: rho/pi sum Phi w cos V with a unit-integral kernel (bounce's calibrated estimator of one-bounce light)", kEstimates);
+    v.field("estimate", m_estimate, "flux: rho/pi sum Phi w_n cos V with a unit-integral kernel (bounce's calibrated estimator of one-bounce light, the default); normalized: sum(w S)/sum(w) times exposure (the document's, no physical scale)", kEstimates);
     v.field("exposure", m_exposure, "factor on the normalized indirect light (document 4.4)", 0.0f, 1.0e6f);
     v.field("ambient", m_ambient, "radiance (times albedo) of pixels no bundle reached, W/(m^2 sr) (document 3.4)", 0.0f, 1.0e6f);
     v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5)", 0, 9);
@@ -105,14 +116,14 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     const float diagonal = std::max(glm::length(m_hi - m_lo), 1e-3f);
     const float size = m_mapSize > 0.0f ? m_mapSize : kAutoMapSizeFraction * diagonal;
     m_half = 0.5f * size;
-    m_back = m_stepBack > 0.0f ? m_stepBack : kAutoStepBackFraction * m_half;
-    m_depth = m_mapDepth > 0.0f ? m_mapDepth : m_back + kAutoDepthFactor * size;
+    m_back = m_stepBack > 0.0f ? m_stepBack : std::numeric_limits<float>::infinity();  // 0: b = d, from the photon
+    m_depth = m_mapDepth;  // 0: to where the rays leave the scene's box
+    m_emitterOffset = kEmitterOffsetFraction * diagonal;
     const gl::GpuInfo& info = gl::Context::current()->info();
-    m_maxLayers = std::max(1, std::min(info.maxArrayLayers, 2048));
     const int r = m_mapResolution;
     // Bundles per frame at most: photons times stored bounces, or one per VPL of a cube RSM.
     const int capacity = std::max(1, m_injection == "rsm" ? 6 * m_vplGrid * m_vplGrid : m_photonCount * m_bounces);
-    BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "render/scene.vert"},
+    BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "techniques/photon_splat/depth.vert"},
                                                                          {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
     BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
                                                                    {GL_FRAGMENT_SHADER, "techniques/photon_splat/splat.frag"}}}));
@@ -120,17 +131,32 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
                                                                        {GL_FRAGMENT_SHADER, "techniques/photon_splat/resolve.frag"}}}));
     BOUNCE_TRY(m_blurProgram, gl::Program::build({"photon-splat.blur", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                                         {GL_FRAGMENT_SHADER, "techniques/photon_splat/blur.frag"}}}));
+    // The depth atlas: one r x r tile per bundle, as many tiles as a frame's bundles (up to the side
+    // limit; more bundles take several batches).
+    const int maxTiles = std::max(1, std::min(info.maxTextureSize, kMaxAtlasTexels) / r);
+    m_tiles.x = std::min(maxTiles, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(capacity)))));
+    m_tiles.y = std::min(maxTiles, (capacity + m_tiles.x - 1) / m_tiles.x);
     gl::TextureDesc maps;
-    maps.target = GL_TEXTURE_2D_ARRAY;
     maps.format = GL_DEPTH_COMPONENT32F;
-    maps.width = maps.height = r;
-    maps.depth = std::min(m_maxLayers, capacity);
+    maps.width = m_tiles.x * r;
+    maps.height = m_tiles.y * r;
     maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
-    m_maps = gl::Texture::create("photon-splat.depthMaps", maps);
+    m_maps = gl::Texture::create("photon-splat.depthAtlas", maps);
+    m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
+    m_mapFbo.attach(GL_DEPTH_ATTACHMENT, m_maps);
+    m_mapFbo.setDrawBuffers(0);
+    BOUNCE_CHECK(m_mapFbo.complete(), "photon-splat depth atlas framebuffer");
+    // The scene's triangles in clusters, drawn per bundle by one multi-draw per batch.
+    m_clusters = photonsplat::ClusterSet::build(ctx.scene, kClusterTriangles);
+    const std::vector<uint32_t>& indices = m_clusters.indices();
+    m_clusterIndices = gl::Buffer::create("photon-splat.clusterIndices", std::max<size_t>(indices.size(), 1) * sizeof(uint32_t),
+                                          indices.empty() ? nullptr : indices.data(), 0);
+    m_drawCapacity = 0;
+    m_depthVao = gl::VertexArray::create("photon-splat.depthVao");
+    glVertexArrayElementBuffer(m_depthVao.id(), m_clusterIndices.id());
     m_accum = gl::Texture::create2D("photon-splat.accumulation", ctx.size.x, ctx.size.y, GL_RGBA32F);
     m_stats = gl::Texture::create2D("photon-splat.overlap", ctx.size.x, ctx.size.y, GL_RGBA32F);
     m_blurTemp = gl::Texture::create2D("photon-splat.blur", ctx.size.x, ctx.size.y, GL_RGBA32F);
-    m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
     m_accumFbo = gl::Framebuffer::create("photon-splat.accumFbo");
     m_accumFbo.attach(GL_COLOR_ATTACHMENT0, m_accum);
     m_accumFbo.attach(GL_COLOR_ATTACHMENT1, m_stats);
@@ -145,19 +171,23 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     points.height = (capacity + points.width - 1) / points.width;
     points.minFilter = points.magFilter = GL_NEAREST;
     m_bundlePoints = gl::Texture::create("photon-splat.bundlePoints", points);
+    const std::vector<glm::vec4> empty(static_cast<size_t>(points.width) * static_cast<size_t>(points.height), glm::vec4(0.0f));
+    glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, points.width, points.height, 1, GL_RGBA, GL_FLOAT, empty.data());
+    m_pointsWritten = 0;
     m_caster.reset();
     m_casterTime = -1.0f;
     return {};
 }
 
 void PhotonSplatTechnique::updateGeometry(FrameContext& ctx) {
-    // The ray-casting scene at this frame's time; static scenes build it once.
+    // The ray-casting scene and the clusters' bounds at this frame's time; static scenes build them once.
     if (!m_caster || (ctx.sceneGpu.hasDynamicObjects() && m_casterTime != ctx.time)) {
         auto caster = RayCaster::create(ctx.scene, ctx.time, GeometryFilter::All);
         BOUNCE_CHECK(caster.ok(), "photon-splat: ray-casting scene");
         m_caster.emplace(std::move(*caster));
         m_casterTime = ctx.time;
     }
+    m_clusters.update(ctx.scene, ctx.time);
 }
 
 std::vector<photonsplat::Photon> PhotonSplatTechnique::rsmPhotons(FrameContext& ctx, uint64_t seed) {
@@ -192,7 +222,8 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         else m_photonList = photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
         ctx.counters["injectMs"] = msSince(t0);
         ctx.counters["photonsStored"] = static_cast<double>(m_photonList.size());
-        ctx.counters["photonBytes"] = static_cast<double>(m_photonList.size() * photonsplat::kThesisPhotonBytes);
+        // What the photons take where they are held: the list's allocation (48 B per Photon).
+        ctx.counters["photonBytes"] = static_cast<double>(m_photonList.capacity() * sizeof(photonsplat::Photon));
         if (m_stratify) {
             const auto t1 = std::chrono::steady_clock::now();
             photonsplat::StratifyStats st;
@@ -205,71 +236,123 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         const auto t2 = std::chrono::steady_clock::now();
         photonsplat::BundleSettings bs;
         bs.stepBack = m_back;
+        ctx.scene.bounds(ctx.time, bs.lo, bs.hi);  // rays that hit nothing still get a bundle
         m_bundles = photonsplat::placeBundles(m_photonList, *m_caster, bs);
         ctx.counters["bundleMs"] = msSince(t2);
         ctx.counters["bundles"] = static_cast<double>(m_bundles.size());
     }
     const int count = static_cast<int>(std::min<size_t>(m_bundles.size(), m_bundleBuffer.size() / sizeof(gpu::BundleGpu)));
+    m_volumes.resize(static_cast<size_t>(count));
+    photonsplat::VolumeSettings volumeSettings;
+    volumeSettings.half = m_half;
+    volumeSettings.stepBack = m_back;
+    volumeSettings.length = m_depth;
+    volumeSettings.emitterOffset = m_emitterOffset;
+    if (m_depth <= 0.0f) ctx.scene.bounds(ctx.time, volumeSettings.lo, volumeSettings.hi);
     std::vector<gpu::BundleGpu> gpuBundles(static_cast<size_t>(count));
     for (int i = 0; i < count; ++i) {
         const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
-        gpuBundles[static_cast<size_t>(i)] = gpu::BundleGpu{glm::vec4(b.origin, m_half), glm::vec4(b.direction, m_depth),
-                                                            glm::vec4(b.right, std::min(m_back, 0.5f * b.hitDistance)), glm::vec4(b.up, 0.0f),
-                                                            glm::vec4(b.power, 0.0f)};
+        const photonsplat::BundleVolume v = photonsplat::bundleVolume(m_photonList[b.photon], b, volumeSettings);
+        m_volumes[static_cast<size_t>(i)] = v;
+        const bool emitter = std::isfinite(v.emitterOffset);
+        gpuBundles[static_cast<size_t>(i)] = gpu::BundleGpu{glm::vec4(v.origin, v.half), glm::vec4(v.direction, v.length),
+                                                            glm::vec4(v.right, v.zNear), glm::vec4(v.up, v.zFar),
+                                                            glm::vec4(v.nearNormal, v.nearOffset),
+                                                            glm::vec4(v.emitterNormal, emitter ? v.emitterOffset : -1e30f), glm::vec4(b.power, 0.0f)};
     }
     if (count > 0) m_bundleBuffer.upload(0, gpuBundles.size() * sizeof(gpu::BundleGpu), gpuBundles.data());
     {
-        // The debug view's points, rewritten whole so that texels of an earlier, larger frame read as empty.
+        // The debug view's points: this frame's hit points, and zeros over what an earlier, larger
+        // frame wrote.
         const gl::TextureDesc& d = m_bundlePoints.desc();
-        std::vector<glm::vec4> hits(static_cast<size_t>(d.width) * static_cast<size_t>(d.height), glm::vec4(0.0f));
+        const int written = std::min(std::max(count, m_pointsWritten), d.width * d.height);
+        const int rows = (written + d.width - 1) / d.width;
+        std::vector<glm::vec4> hits(static_cast<size_t>(rows) * static_cast<size_t>(d.width), glm::vec4(0.0f));
         for (int i = 0; i < count && i < static_cast<int>(hits.size()); ++i) {
             const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
-            hits[static_cast<size_t>(i)] = glm::vec4(b.origin + std::min(m_back, 0.5f * b.hitDistance) * b.direction, 1.0f);
+            hits[static_cast<size_t>(i)] = glm::vec4(m_photonList[b.photon].position + b.hitDistance * b.direction, 1.0f);
         }
-        glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, d.width, d.height, 1, GL_RGBA, GL_FLOAT, hits.data());
+        if (rows > 0) glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, d.width, rows, 1, GL_RGBA, GL_FLOAT, hits.data());
+        m_pointsWritten = count;
     }
 
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 1, zero);
     const float tolerance = m_depthTolerance > 0.0f ? m_depthTolerance : kAutoToleranceTexels * 2.0f * m_half / static_cast<float>(m_mapResolution);
-    const int layers = m_maps.desc().depth;
+    const int tiles = m_tiles.x * m_tiles.y;
     int batches = 0;
-    for (int first = 0; first < count; first += layers, ++batches) {
-        const int n = std::min(layers, count - first);
+    double clusterDraws = 0.0, cullMs = 0.0;
+    std::vector<uint32_t> kept, perCluster;
+    std::vector<glm::uvec2> pairs;  // (cluster, bundle)
+    std::vector<DrawCommand> commands;
+    std::vector<glm::uvec2> drawData;
+    for (int first = 0; first < count; first += tiles, ++batches) {
+        const int n = std::min(tiles, count - first);
         {
             auto s = ctx.timers.scope("depth-maps");
-            const float one = 1.0f;
-            glClearTexImage(m_maps.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
-            m_depthProgram.use();
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_LESS);
-            glDisable(GL_CULL_FACE);  // back faces occlude too: the frustum may start inside geometry (4.3)
-            glDisable(GL_BLEND);
-            glDisable(GL_STENCIL_TEST);
+            // Cull: per bundle, the clusters whose box meets its volume (CPU); then one instanced
+            // indirect command per cluster, its instances the bundles that keep it (grouped by a
+            // counting sort, so that baseInstance + gl_InstanceID reads them).
+            const auto t0 = std::chrono::steady_clock::now();
+            pairs.clear();
             for (int i = 0; i < n; ++i) {
-                const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(first + i)];
-                m_mapFbo.attachLayer(GL_DEPTH_ATTACHMENT, m_maps, i);
-                m_mapFbo.setDrawBuffers(0);
-                m_mapFbo.bind();
-                render::View view;
-                // Rows right, up, -w: the map's texel (u, v) is the splat's (right, up) offset.
-                glm::mat4 vfw(1.0f);
-                for (int c = 0; c < 3; ++c) {
-                    vfw[c][0] = b.right[c];
-                    vfw[c][1] = b.up[c];
-                    vfw[c][2] = -b.direction[c];
-                }
-                vfw[3] = glm::vec4(-glm::dot(b.right, b.origin), -glm::dot(b.up, b.origin), glm::dot(b.direction, b.origin), 1.0f);
-                view.viewFromWorld = vfw;
-                view.clipFromView = glm::ortho(-m_half, m_half, -m_half, m_half, 0.0f, m_depth);
-                view.eye = b.origin;
-                view.nearPlane = 0.0f;
-                view.farPlane = m_depth;
-                view.viewport = {m_mapResolution, m_mapResolution};
-                ctx.drawer.draw(view);
+                kept.clear();
+                m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
+                for (uint32_t c : kept) pairs.push_back({c, static_cast<uint32_t>(first + i)});
             }
-            glDisable(GL_DEPTH_TEST);
+            perCluster.assign(m_clusters.clusters().size() + 1, 0u);
+            for (const glm::uvec2& pr : pairs) ++perCluster[pr.x + 1];
+            std::partial_sum(perCluster.begin(), perCluster.end(), perCluster.begin());
+            commands.clear();
+            for (size_t c = 0; c + 1 < perCluster.size(); ++c)
+                if (perCluster[c + 1] > perCluster[c]) {
+                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
+                    commands.push_back({cl.indexCount, perCluster[c + 1] - perCluster[c], cl.firstIndex, 0, perCluster[c]});
+                }
+            drawData.resize(pairs.size());
+            for (const glm::uvec2& pr : pairs) drawData[perCluster[pr.x]++] = {pr.y, m_clusters.clusters()[pr.x].object};
+            clusterDraws += static_cast<double>(pairs.size());
+            cullMs += msSince(t0);
+            if (std::max(commands.size(), drawData.size()) > m_drawCapacity) {
+                m_drawCapacity = std::max(std::max(commands.size(), drawData.size()), 2 * m_drawCapacity);
+                m_drawCommands = gl::Buffer::create("photon-splat.drawCommands", m_drawCapacity * sizeof(DrawCommand));
+                m_drawData = gl::Buffer::create("photon-splat.drawData", m_drawCapacity * sizeof(glm::uvec2));
+                glVertexArrayVertexBuffer(m_depthVao.id(), 0, m_drawData.id(), 0, sizeof(glm::uvec2));
+                glVertexArrayBindingDivisor(m_depthVao.id(), 0, 1);
+                glEnableVertexArrayAttrib(m_depthVao.id(), 0);
+                glVertexArrayAttribIFormat(m_depthVao.id(), 0, 2, GL_UNSIGNED_INT, 0);
+                glVertexArrayAttribBinding(m_depthVao.id(), 0, 0);
+            }
+            if (!commands.empty()) {
+                m_drawCommands.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
+                m_drawData.upload(0, drawData.size() * sizeof(glm::uvec2), drawData.data());
+            }
+            m_mapFbo.bind();
+            glViewport(0, 0, m_maps.width(), m_maps.height());
+            const float one = 1.0f;
+            glClearNamedFramebufferfv(m_mapFbo.id(), GL_DEPTH, 0, &one);
+            if (!commands.empty()) {
+                m_depthProgram.use();
+                m_depthProgram.set("u_first", first);
+                m_depthProgram.set("u_tiles", m_tiles);
+                m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+                ctx.sceneGpu.vertices().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+                ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
+                glEnable(GL_DEPTH_TEST);
+                glDepthFunc(GL_LESS);
+                glDepthMask(GL_TRUE);
+                glDisable(GL_CULL_FACE);  // back faces occlude too: the volume may start inside geometry (4.3)
+                glDisable(GL_BLEND);
+                glDisable(GL_STENCIL_TEST);
+                for (int k = 0; k < kDepthClipPlanes; ++k) glEnable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+                m_depthVao.bind();
+                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_drawCommands.id());
+                glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
+                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+                for (int k = 0; k < kDepthClipPlanes; ++k) glDisable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+                glDisable(GL_DEPTH_TEST);
+            }
         }
         {
             auto s = ctx.timers.scope("splat");
@@ -278,23 +361,34 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             glEnable(GL_BLEND);
             glBlendEquation(GL_FUNC_ADD);
             glBlendFunc(GL_ONE, GL_ONE);
+            glEnable(GL_CULL_FACE);  // the volume's back faces: each covered pixel once (splat.vert)
+            glCullFace(GL_FRONT);
             ctx.gbuffer.bind();
             m_maps.bind(BINDING_TEX_TECH0);
             m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_splat.set("u_first", first);
+            m_splat.set("u_tiles", m_tiles);
+            m_splat.set("u_resolution", m_mapResolution);
             m_splat.set("u_filter", indexOf(kFilters, m_filter) == 0 ? SPLAT_FILTER_GAUSSIAN
                                     : indexOf(kFilters, m_filter) == 1 ? SPLAT_FILTER_TENT : SPLAT_FILTER_BOX);
             m_splat.set("u_estimate", m_estimate == "flux" ? SPLAT_ESTIMATE_FLUX : SPLAT_ESTIMATE_NORMALIZED);
             m_splat.set("u_tolerance", tolerance);
             m_splat.use();
             gl::Context::current()->bindEmptyVertexArray();
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 6, n);
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, n);
+            glCullFace(GL_BACK);
+            glDisable(GL_CULL_FACE);
             glDisable(GL_BLEND);
         }
     }
     ctx.counters["depthMapBatches"] = static_cast<double>(batches);
     ctx.counters["depthMapTexels"] = static_cast<double>(count) * m_mapResolution * m_mapResolution;
+    ctx.counters["clusterDraws"] = clusterDraws;
+    ctx.counters["cullMs"] = cullMs;
     ctx.counters["bundleHalfSize"] = m_half;
+    ctx.counters["bundleBufferBytes"] = static_cast<double>(m_bundleBuffer.size());
+    ctx.counters["depthAtlasBytes"] = static_cast<double>(gl::textureStorageBytes(m_maps.desc()));
+    ctx.counters["clusterBytes"] = static_cast<double>(m_clusters.bytes() + m_clusterIndices.size());
     {
         auto s = ctx.timers.scope("resolve");
         const gl::Texture& target = m_blur > 0 && m_debugView == "none" ? m_blurTemp : indirect;

@@ -3,6 +3,7 @@
 // for the passes and docs/techniques/photon-splat.md for settings and deviations.
 #include "techniques/Technique.h"
 #include "techniques/nichols/RegularVpls.h"
+#include "techniques/photon_splat/BundleVolume.h"
 #include "techniques/photon_splat/PhotonInjection.h"
 
 #include <array>
@@ -29,13 +30,16 @@ public:
     }
 
     static constexpr std::array<std::string_view, 3> kFilters{"gaussian", "tent", "box"};
-    static constexpr std::array<std::string_view, 2> kEstimates{"normalized", "flux"};
+    static constexpr std::array<std::string_view, 2> kEstimates{"flux", "normalized"};
     static constexpr std::array<std::string_view, 4> kDebugViews{"none", "overlap", "accumulation", "grid"};
     static constexpr std::array<std::string_view, 2> kInjections{"rays", "rsm"};
 
     // For tests: the photons and bundles of the last frame.
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
     const std::vector<photonsplat::Bundle>& bundles() const { return m_bundles; }
+    // For tests: the GL storage the byte counters describe.
+    const gl::Buffer& bundleBuffer() const { return m_bundleBuffer; }
+    const gl::Texture& depthAtlas() const { return m_maps; }
     // Tests: use these photons every frame instead of shooting them (stratification still applies).
     void setFixedPhotons(std::vector<photonsplat::Photon> photons) { m_fixedPhotons = std::move(photons); }
 
@@ -48,7 +52,7 @@ private:
     std::string m_injection{"rays"};
     int m_rsmSize = 256;
     int m_vplGrid = 32;
-    int m_photonCount = 1024;
+    int m_photonCount = 8192;
     int m_bounces = 1;
     int m_seed = 0;
     bool m_reseed = false;
@@ -61,15 +65,16 @@ private:
     int m_mapResolution = 8;
     float m_depthTolerance = 0.0f;
     std::string m_filter{"gaussian"};
-    std::string m_estimate{"normalized"};
+    std::string m_estimate{"flux"};
     float m_exposure = 1.0f;
     float m_ambient = 0.0f;
     int m_blur = 0;
     std::string m_debugView{"none"};
 
     float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f;  // bundle half width h, depth D, step back b (metres)
+    float m_emitterOffset = 0.0f;                         // metres
     glm::vec3 m_lo{0.0f}, m_hi{0.0f};
-    int m_maxLayers = 256;
+    glm::ivec2 m_tiles{1};  // depth atlas tiles per row, rows
     std::optional<RayCaster> m_caster;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_vpls;
@@ -77,6 +82,12 @@ private:
     std::vector<photonsplat::Photon> m_photonList;
     std::optional<std::vector<photonsplat::Photon>> m_fixedPhotons;
     std::vector<photonsplat::Bundle> m_bundles;
+    std::vector<photonsplat::BundleVolume> m_volumes;
+    photonsplat::ClusterSet m_clusters;
+    gl::Buffer m_clusterIndices, m_drawCommands, m_drawData;
+    size_t m_drawCapacity = 0;  // commands the two draw buffers hold
+    gl::VertexArray m_depthVao;
+    int m_pointsWritten = 0;    // texels of m_bundlePoints the last frame wrote
     gl::Buffer m_bundleBuffer;
     gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
     // The viewer's "photon-splat.bundles": RGBA32F 2D array (one layer), texel i = bundle i's hit point
