@@ -58,6 +58,7 @@ constexpr float kEmitterOffsetFraction = 1e-4f;  // emitter plane offset: 1e-4 o
 constexpr uint32_t kClusterTriangles = 64;     // triangles per culling cluster
 constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels (64 MB of DEPTH32F)
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
+constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first hits' depths +- 4 texels (slopes to tan 76 degrees over a half texel diagonal... and then some)
 constexpr int kDepthClipPlanes = 7;            // depth.vert's clip distances: tile (4), near, far, emitter
 
 struct DrawCommand {  // DrawElementsIndirectCommand
@@ -127,6 +128,7 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
                                                                          {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
     BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
                                                                    {GL_FRAGMENT_SHADER, "techniques/photon_splat/splat.frag"}}}));
+    BOUNCE_TRY(m_rangeProgram, gl::Program::build({"photon-splat.range", {{GL_COMPUTE_SHADER, "techniques/photon_splat/tile_range.comp"}}}));
     BOUNCE_TRY(m_resolve, gl::Program::build({"photon-splat.resolve", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                                        {GL_FRAGMENT_SHADER, "techniques/photon_splat/resolve.frag"}}}));
     BOUNCE_TRY(m_blurProgram, gl::Program::build({"photon-splat.blur", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
@@ -164,6 +166,7 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_CHECK(m_accumFbo.complete(), "photon-splat accumulation framebuffer");
     m_outFbo = gl::Framebuffer::create("photon-splat.outFbo");
     m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(capacity) * sizeof(gpu::BundleGpu));
+    m_ranges = gl::Buffer::create("photon-splat.hitRanges", static_cast<size_t>(capacity) * sizeof(glm::vec2));
     gl::TextureDesc points;
     points.target = GL_TEXTURE_2D_ARRAY;
     points.format = GL_RGBA32F;
@@ -354,6 +357,20 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                 glDisable(GL_DEPTH_TEST);
             }
         }
+        const bool useRanges = m_estimate == "flux";
+        if (useRanges) {
+            // The depths of each bundle's first hits, for the splat's cut volume.
+            auto s = ctx.timers.scope("hit-ranges");
+            m_maps.bind(BINDING_TEX_TECH0);
+            m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_ranges.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+            m_rangeProgram.set("u_first", first);
+            m_rangeProgram.set("u_tiles", m_tiles);
+            m_rangeProgram.set("u_resolution", m_mapResolution);
+            m_rangeProgram.use();
+            glDispatchCompute(static_cast<GLuint>(n), 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // splat.vert reads the ranges
+        }
         {
             auto s = ctx.timers.scope("splat");
             m_accumFbo.bind();
@@ -373,6 +390,11 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                                     : indexOf(kFilters, m_filter) == 1 ? SPLAT_FILTER_TENT : SPLAT_FILTER_BOX);
             m_splat.set("u_estimate", m_estimate == "flux" ? SPLAT_ESTIMATE_FLUX : SPLAT_ESTIMATE_NORMALIZED);
             m_splat.set("u_tolerance", tolerance);
+            m_splat.set("u_useRanges", useRanges);
+            // A receiver may lie beyond its texel's hit depth by its slope over half a texel: the
+            // margin covers slopes up to kRangeMarginTexels (tan 76 degrees), plus the tolerance.
+            m_splat.set("u_rangeMargin", kRangeMarginTexels * 2.0f * m_half / static_cast<float>(m_mapResolution) + tolerance);
+            m_ranges.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
             m_splat.use();
             gl::Context::current()->bindEmptyVertexArray();
             glDrawArraysInstanced(GL_TRIANGLES, 0, 36, n);

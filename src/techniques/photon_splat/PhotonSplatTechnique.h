@@ -89,12 +89,13 @@ private:
     gl::VertexArray m_depthVao;
     int m_pointsWritten = 0;    // texels of m_bundlePoints the last frame wrote
     gl::Buffer m_bundleBuffer;
+    gl::Buffer m_ranges;  // per bundle: the depth range of its first hits (tile_range.comp)
     gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
     // The viewer's "photon-splat.bundles": RGBA32F 2D array (one layer), texel i = bundle i's hit point
     // (xyz, w = 1), w = 0 past the frame's bundles.
     gl::Texture m_bundlePoints;
     gl::Framebuffer m_mapFbo, m_accumFbo, m_outFbo;
-    gl::Program m_depthProgram, m_splat, m_resolve, m_blurProgram;
+    gl::Program m_depthProgram, m_rangeProgram, m_splat, m_resolve, m_blurProgram;
 };
 
 }  // namespace bounce
