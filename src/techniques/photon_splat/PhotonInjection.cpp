@@ -26,10 +26,30 @@ glm::vec3 uniformSphere(float u1, float u2) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+// The rectangle, across a directional light's direction d, that holds the scene's box [lo, hi] as
+// the light sees it: offsets (t, b) from the box centre along Frame(d)'s t and b axes.
+struct SunRectangle {
+    glm::vec2 min{0.0f}, max{0.0f};
+    float area() const { return (max.x - min.x) * (max.y - min.y); }
+};
+SunRectangle sunRectangle(glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
+    const Frame f(d);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    SunRectangle r{glm::vec2(std::numeric_limits<float>::infinity()), glm::vec2(-std::numeric_limits<float>::infinity())};
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 c((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+        const glm::vec2 q(glm::dot(c - centre, f.t), glm::dot(c - centre, f.b));
+        r.min = glm::min(r.min, q);
+        r.max = glm::max(r.max, q);
+    }
+    return r;
+}
+
 // Flux a light sends into the scene (W per channel). Directional lights: the irradiance through the
-// disc that covers the scene's bounding sphere. A textured area light: times its texture's mean now.
-glm::vec3 emittedFlux(const Scene& scene, const Light& l, float sceneRadius, float time) {
-    if (l.type == LightType::Directional) return l.irradiance * (kPi * sceneRadius * sceneRadius);
+// rectangle that holds the scene's box as the light sees it. A textured area light: times its
+// texture's mean now.
+glm::vec3 emittedFlux(const Scene& scene, const Light& l, glm::vec3 lo, glm::vec3 hi, float time) {
+    if (l.type == LightType::Directional) return l.irradiance * sunRectangle(glm::normalize(l.direction), lo, hi).area();
     if (l.type == LightType::Area) return l.flux() * areaTextureMean(scene, l, time);
     return l.flux();
 }
@@ -48,7 +68,7 @@ glm::vec3 areaTexel(const Image& image, float u, float v) {
 
 // One emitted photon of light l with random numbers from `rng`; the photon carries the light's flux
 // `flux` divided by the n photons it shoots (an estimate whose sum over the n is the flux).
-Emission emit(const Light& l, Rng& rng, glm::vec3 centre, float radius, glm::vec3 flux, uint32_t n, const Image* texture) {
+Emission emit(const Light& l, Rng& rng, glm::vec3 lo, glm::vec3 hi, glm::vec3 flux, uint32_t n, const Image* texture) {
     const float u[4] = {rng.next(), rng.next(), rng.next(), rng.next()};
     Emission e{l.position, glm::vec3(0.0f, -1.0f, 0.0f), flux / static_cast<float>(n)};
     switch (l.type) {
@@ -69,10 +89,12 @@ Emission emit(const Light& l, Rng& rng, glm::vec3 centre, float radius, glm::vec
             break;
         }
         case LightType::Directional: {
+            // Uniform over the rectangle that holds the scene's box, starting outside the box.
             const glm::vec3 d = glm::normalize(l.direction);
             const Frame f(d);
-            const float r = radius * std::sqrt(u[0]), phi = 2.0f * kPi * u[1];
-            e.origin = centre - d * (2.0f * radius) + f.toWorld({r * std::cos(phi), r * std::sin(phi), 0.0f});
+            const SunRectangle r = sunRectangle(d, lo, hi);
+            const glm::vec2 q = glm::mix(r.min, r.max, glm::vec2(u[0], u[1]));
+            e.origin = 0.5f * (lo + hi) - d * glm::length(hi - lo) + q.x * f.t + q.y * f.b;
             e.direction = d;
             break;
         }
@@ -173,8 +195,6 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
     std::vector<Photon> out;
     glm::vec3 lo, hi;
     scene.bounds(time, lo, hi);
-    const glm::vec3 centre = 0.5f * (lo + hi);
-    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     // Emitters at time t (the lights, then the objects whose material emits), photons split over them
     // by flux (luminance).
     std::vector<Light> lights;
@@ -185,7 +205,7 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
     std::vector<float> weight;
     for (size_t li = 0; li < lights.size(); ++li) {
         textures.push_back(lights[li].type == LightType::Area ? areaTextureAt(scene, lights[li], time, scratch[li]) : nullptr);
-        weight.push_back(std::max(luminance(emittedFlux(scene, lights[li], radius, time)), 0.0f));
+        weight.push_back(std::max(luminance(emittedFlux(scene, lights[li], lo, hi, time)), 0.0f));
     }
     for (const EmissiveObject& e : objects) weight.push_back(std::max(luminance(e.flux), 0.0f));
     const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
@@ -196,7 +216,7 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
         for (uint32_t i = 0; i < n; ++i) {
             Rng rng(settings.seed, ei, i);
             const Emission e = ei < lights.size()
-                                   ? emit(lights[ei], rng, centre, radius, emittedFlux(scene, lights[ei], radius, time), n, textures[ei])
+                                   ? emit(lights[ei], rng, lo, hi, emittedFlux(scene, lights[ei], lo, hi, time), n, textures[ei])
                                    : emitFromObject(scene, objects[ei - lights.size()], rng, n);
             glm::vec3 origin = e.origin, dir = e.direction, power = e.power;
             if (!(maxComponent(power) > 0.0f)) continue;  // a black texel

@@ -29,8 +29,8 @@ struct InjectionSettings {
 };
 
 // Shoots `photons` photons from the scene's lights at time t (point: uniform sphere; spot: uniform in
-// the cone, power weighted by the falloff; directional: a disc covering the scene; area: uniform
-// points, cosine directions) and stores one photon at each of the first `bounces` diffuse hits,
+// the cone, power weighted by the falloff; directional: the rectangle across the light that holds the
+// scene's box; area: uniform points, cosine directions) and stores one photon at each of the first `bounces` diffuse hits,
 // with power = emitted share x the albedo of every surface it reflected from (the photon then leaves
 // in a cosine-distributed direction about the normal). Light that leaves the scene stores nothing.
 // Deterministic for a seed. Lights with no flux are skipped; no lights give no photons.

@@ -84,7 +84,7 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("injection", m_injection, "rays: photons shot from the lights through the ray-casting service (the document's method A); rsm: the regular VPLs of a reflective shadow map (its method B for a GPU pipeline)", kInjections);
     v.field("rsmSize", m_rsmSize, "RSM resolution per side with injection=rsm (per cube face for point/area lights)", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer with injection=rsm (must divide rsmSize): vplGrid^2 photons per layer", 1, 256);
-    v.field("photons", m_photonCount, "photons shot from the emitters per frame (document: 2,500-50,000; default 8192: within bounds on every built-in scene, docs)", 1, 1 << 20);
+    v.field("photons", m_photonCount, "photons shot from the emitters per frame (document: 2,500-50,000; default 16384: within bounds on every built-in scene, docs)", 1, 1 << 20);
     v.field("bounces", m_bounces, "diffuse hits at which photons are stored (1: single bounce, as implemented in the document)", 1, 8);
     v.field("seed", m_seed, "random seed of the photon paths", 0, 1 << 30);
     v.field("reseed", m_reseed, "new photon paths every frame (seed + frame): converges over frames, flickers; off = the same paths every frame");
@@ -100,7 +100,7 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("estimate", m_estimate, "flux: rho/pi sum Phi w_n cos V with a unit-integral kernel (bounce's calibrated estimator of one-bounce light, the default); normalized: sum(w S)/sum(w) times exposure (the document's, no physical scale)", kEstimates);
     v.field("exposure", m_exposure, "factor on the normalized indirect light (document 4.4)", 0.0f, 1.0e6f);
     v.field("ambient", m_ambient, "radiance (times albedo) of pixels no bundle reached, W/(m^2 sr) (document 3.4)", 0.0f, 1.0e6f);
-    v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5)", 0, 9);
+    v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5; default 5: fills the pixels no bundle reached, docs)", 0, 9);
     v.field("debugView", m_debugView, "overlap: bundles per pixel (blue 0 to red 16); accumulation: before normalisation; grid: stratification cell of each pixel", kDebugViews);
 }
 

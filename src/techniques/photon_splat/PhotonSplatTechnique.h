@@ -52,7 +52,7 @@ private:
     std::string m_injection{"rays"};
     int m_rsmSize = 256;
     int m_vplGrid = 32;
-    int m_photonCount = 8192;
+    int m_photonCount = 16384;
     int m_bounces = 1;
     int m_seed = 0;
     bool m_reseed = false;
@@ -68,7 +68,7 @@ private:
     std::string m_estimate{"flux"};
     float m_exposure = 1.0f;
     float m_ambient = 0.0f;
-    int m_blur = 0;
+    int m_blur = 5;
     std::string m_debugView{"none"};
 
     float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f;  // bundle half width h, depth D, step back b (metres)
