@@ -43,8 +43,11 @@ TEST_F(PhotonSplatGpuTest, OnePhotonSplatsItsFootprint) {
     for (const char* filter : {"box", "tent", "gaussian"}) {
         auto p = makePipeline(scene, "photon-splat", {{"estimate", "flux"}, {"filter", filter}, {"mapSize", "1.0"}, {"stepBack", "0.1"}, {"blur", "0"}}, kSize);
         splatOf(*p).setFixedPhotons({photon});
-        p->renderFrame(0);
+        const Counters counters = p->renderFrame(0).counters;
         ASSERT_EQ(splatOf(*p).bundles().size(), 1u);
+        // M6's overlap counters: one bundle over its 1 m square, 32 x 32 pixels of 3.125 cm.
+        EXPECT_EQ(counters.at("overlapMax"), 1.0) << filter;
+        if (std::string(filter) == "box") EXPECT_EQ(counters.at("overlapPixels"), 1024.0);
         const Image img = p->readback(Component::Indirect);
         // rho / pi * Phi * w_n integrates over the plane to rho Phi / pi (the kernel has unit
         // integral; the beam meets the plane head on). Measured 1.0000 (box, tent), 1.0003
@@ -248,7 +251,9 @@ TEST_F(PhotonSplatGpuTest, NormalisationIsTheWeightedMeanWithAnAmbientFallback) 
     auto p = makePipeline(scene, "photon-splat", {{"estimate", "normalized"}, {"filter", "gaussian"}, {"mapSize", "1.0"},
                                                   {"ambient", "0.01"}, {"exposure", "2"}, {"blur", "0"}}, kSize);
     splatOf(*p).setFixedPhotons({photon, photon});
-    p->renderFrame(0);
+    const Counters counters = p->renderFrame(0).counters;
+    EXPECT_EQ(counters.at("overlapMax"), 2.0);  // the two bundles cover the same pixels
+    EXPECT_EQ(counters.at("overlapMean"), 2.0);
     const Image img = p->readback(Component::Indirect);
     // Inside the footprint: exposure * (w S) / w = 2 * C A with C = Phi / (pi (2h)^2), whatever the
     // weight (two identical photons average to one); outside: ambient * albedo.

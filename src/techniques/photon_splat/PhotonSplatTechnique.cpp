@@ -450,6 +450,22 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     }
 }
 
+void PhotonSplatTechnique::collectCounters(Counters& out) {
+    if (!m_stats) return;
+    std::vector<float> counts(static_cast<size_t>(m_stats.width()) * static_cast<size_t>(m_stats.height()));
+    glGetTextureImage(m_stats.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(counts.size() * sizeof(float)), counts.data());
+    double sum = 0.0, most = 0.0, pixels = 0.0;
+    for (float c : counts)
+        if (c > 0.0f) {
+            sum += c;
+            most = std::max(most, static_cast<double>(c));
+            pixels += 1.0;
+        }
+    out["overlapMean"] = pixels > 0.0 ? sum / pixels : 0.0;
+    out["overlapMax"] = most;
+    out["overlapPixels"] = pixels;
+}
+
 std::string_view PhotonSplatTechnique::frameReadbackReason() const {
     // injection=rays traces on the CPU from the scene alone; injection=rsm (the document's method B)
     // reads the shared RSM's VPLs back as photons, because the bundles are built on the CPU (pass 3).

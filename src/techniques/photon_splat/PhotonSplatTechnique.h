@@ -20,6 +20,9 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     std::string_view frameReadbackReason() const override;
+    // M6: bundles per pixel (the overlap texture, read after the frame): mean and largest over the
+    // pixels some bundle reached, and how many pixels that is.
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
         // Where each bundle of the frame is centred: its photon's hit point (5-pixel dots).
