@@ -53,11 +53,9 @@ BundleVolume bundleVolume(const Photon& photon, const Bundle& bundle, const Volu
     // ray starts beside the photon. b < d (the document's small step back): through C = P + (d - b) w,
     // parallel to the hit surface (its tilt from the perpendicular capped at kMaxNearTilt), so that
     // a tilted receiver around the hit is not cut by it. The far plane is D past the near plane.
-    const float d = bundle.hitDistance;
-    const bool fromPhoton = bundle.escaped || !(stepBack < d);
-    const float back = fromPhoton ? d : stepBack;
+    const bool fromPhoton = bundle.escaped || !(stepBack < bundle.hitDistance);
     v.length = length;
-    const glm::vec3 c = photon.position + (d - back) * w;
+    const glm::vec3 c = bundle.origin;  // C, placeBundles' step back (P when b >= d)
     glm::vec3 m = fromPhoton ? -w : bundle.hitNormal;
     const float cosHit = -glm::dot(w, m);
     const float cosMin = std::cos(kMaxNearTilt);

@@ -347,7 +347,7 @@ std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCa
             b.hitNormal = -b.direction;
             b.escaped = true;
         }
-        const float back = std::min(settings.stepBack, 0.5f * b.hitDistance);
+        const float back = b.escaped ? b.hitDistance : std::min(settings.stepBack, b.hitDistance);  // C never behind P
         b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
         out.push_back(b);
     }

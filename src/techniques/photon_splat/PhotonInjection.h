@@ -51,7 +51,7 @@ std::vector<Photon> stratify(const std::vector<Photon>& photons, glm::vec3 lo, g
                              uint64_t seed, StratifyStats* stats = nullptr);
 
 // An orthographic bundle (§3.3, Fig. 4): the photon's ray hits the scene at distance d; the bundle's
-// frustum starts at C = P + (d - b) w, looks along w, and is halfSize x halfSize wide, `depth` deep.
+// frustum starts at C = P + (d - b) w and looks along w (its volume: BundleVolume.h).
 struct Bundle {
     glm::vec3 origin{0.0f};     // C
     glm::vec3 direction{0.0f};  // w
@@ -63,7 +63,7 @@ struct Bundle {
     bool escaped = false;       // the ray hit nothing: d is where it leaves the scene's box, hitNormal = -w
 };
 struct BundleSettings {
-    float stepBack = 0.05f;  // b, metres (clamped to half the hit distance)
+    float stepBack = 0.05f;  // b, metres (at most the hit distance d: C never lies behind P; infinity = d)
     float maxDistance = 1e30f;
     // Photons whose ray hits nothing still get a bundle (escaped) when the box [lo, hi] is not empty:
     // the rays of its cross-section beside its axis may hit the scene. Otherwise they give none.

@@ -1,35 +1,22 @@
-// `photon-splat` — photon splatting with orthographic bundles (seed 004: a thesis whose title page
-// is lost; "photon splatting", ch. 3-4) on the GPU pipeline the document suggests.
-//
-// Passes per frame:
-//  1. "inject" (CPU, §3.2 method A): photons shot from the lights through the Embree ray-casting
-//     service; at the first diffuse hit each stores position, power (its share of the light's flux
-//     times the albedo) and a cosine-distributed direction about the normal; `bounces` > 1 stores
-//     the next hits too (PhotonInjection.cpp).
-//  2. "stratify" (CPU, optional, §3.2.1/§4.2): a dense grid over the scene, one level of 2x2x2 block
-//     merging under a photon-count threshold, one random representative per cell or block carrying
-//     the summed power.
-//  3. "bundles" (CPU, §3.3/§4.3, Fig. 4): per photon a ray along its direction to the first hit at
-//     distance d, a step back by b: the orthographic frustum starts at C = P + (d - b) w, looks along
-//     w, is 2h x 2h wide and D deep.
-//  4. "depth-maps": each bundle's r x r depth map of the scene (back faces included: no culling),
-//     layers of a texture array, up to the array limit per batch.
-//  5. "splat": per bundle one screen rectangle around its box; each G-buffer pixel inside it gets the
-//     Lambert splat S = max(0, -w.N) C A with a box, tent or Gaussian weight and the tolerant depth
-//     test, accumulated with the weight in alpha by additive blending (splat.frag).
-//  6. "resolve": normalisation sum(w S) / sum(w) with the ambient fallback and the exposure (§3.4,
-//     §4.4), or bounce's calibrated flux estimate; debug views.
-//  7. "blur" (optional, §3.5): separable Gaussian, 3..9 pixels.
-// Combine (§3.6) is the pipeline's full = direct + indirect.
-//
-// With injection=rsm, pass 1 is the document's method B: the regular VPLs of the shared reflective
-// shadow map (techniques/nichols) read back as photons.
-//
-// Deviations (docs/techniques/photon-splat.md): CPU injection per frame with a fixed seed; C = photon
-// power / (pi (2h)^2), the beam's radiance, since the document leaves the colour's scale to the
-// exposure; the `flux` estimate (not in the document) makes the splat an estimator of one-bounce
-// indirect light; the stratification keeps the grid sparse in memory but reports the dense grid's
-// 40 B/cell; the screen rectangle of the box replaces the document's full-screen pass per splat.
+// `photon-splat` — photon splatting with orthographic bundles (seed 004, a thesis: ch. 3-4) on a GPU
+// pipeline. Passes per frame:
+//  1. inject (CPU, §3.2): photons from the emitters, stored at their first diffuse hit with a cosine
+//     direction (PhotonInjection); injection=rsm: the document's method B (shared RSM's VPLs).
+//  2. stratify (CPU, optional, §3.2.1/§4.2): 2x2x2 blocks with a cell under the threshold merge.
+//  3. bundles (CPU, §3.3, Fig. 4): a ray per photon to its hit, the step back, the volume
+//     (BundleVolume), the clusters of the scene that meet it (ClusterSet).
+//  4. depth-maps: one r x r tile of a depth atlas per bundle, one multi-draw per batch (depth.vert).
+//  5. hit-ranges + splat (§3.3/§4.3): each volume's back faces; per pixel the tolerant depth test,
+//     the filter weight, the Lambert splat, added with the weight in alpha (splat.vert/.frag).
+//  6. resolve (§3.4/§4.4): the flux estimate, or the document's normalisation; debug views.
+//  7. blur (§3.5): separable Gaussian.
+// Deviations, one line each (docs/techniques/photon-splat.md has the measurements):
+//  - default estimate=flux, calibrated; the document's normalized has no physical scale.
+//  - b = d by default (bundle from its photon) and D past the scene's box; b < d tilts the near plane.
+//  - no bundle ray starts behind its photon's surface; photons whose ray escapes keep their bundle.
+//  - the depth test uses the receiver's plane at the texel centre; maps in an atlas, culled clusters.
+//  - photons from emissive surfaces and textured area lights too; 16384 photons, blur 5 by default.
+// References: seed 004 (shared/seeds), spec shared/specs/photon-splatting-orthographic-bundles.md.
 #include "techniques/photon_splat/PhotonSplatTechnique.h"
 
 #include "core/Check.h"
@@ -59,7 +46,8 @@ constexpr uint32_t kClusterTriangles = 64;     // triangles per culling cluster
 constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels (64 MB of DEPTH32F)
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
 constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first hits' depths +- 4 texels (slopes to tan 76 degrees over a half texel diagonal... and then some)
-constexpr int kDepthClipPlanes = 7;            // depth.vert's clip distances: tile (4), near, far, emitter
+constexpr int kDepthClipPlanes = 7;
+constexpr float kOverlapHeatMax = 64.0f;       // the overlap view's red: bundles per pixel (the defaults reach ~25 mean, ~80 at most)            // depth.vert's clip distances: tile (4), near, far, emitter
 
 struct DrawCommand {  // DrawElementsIndirectCommand
     GLuint count, instanceCount, firstIndex;
@@ -101,7 +89,7 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("exposure", m_exposure, "factor on the normalized indirect light (document 4.4)", 0.0f, 1.0e6f);
     v.field("ambient", m_ambient, "radiance (times albedo) of pixels no bundle reached, W/(m^2 sr) (document 3.4)", 0.0f, 1.0e6f);
     v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5; default 5: fills the pixels no bundle reached, docs)", 0, 9);
-    v.field("debugView", m_debugView, "overlap: bundles per pixel (blue 0 to red 16); accumulation: before normalisation; grid: stratification cell of each pixel", kDebugViews);
+    v.field("debugView", m_debugView, "overlap: bundles per pixel (blue 0 to red 64); accumulation: before normalisation; grid: stratification cell of each pixel", kDebugViews);
 }
 
 Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
@@ -426,7 +414,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         m_resolve.set("u_exposure", m_exposure);
         m_resolve.set("u_ambient", glm::vec3(m_ambient));
         m_resolve.set("u_view", indexOf(kDebugViews, m_debugView));
-        m_resolve.set("u_heatMax", 16.0f);
+        m_resolve.set("u_heatMax", kOverlapHeatMax);
         m_resolve.set("u_gridLo", m_lo);
         m_resolve.set("u_gridHi", m_hi);
         m_resolve.set("u_gridSize", m_gridSize);
