@@ -25,7 +25,8 @@ public:
     void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
-        // Where each bundle of the frame is centred: its photon's hit point (5-pixel dots).
+        // Where each bundle of the frame is centred: its photon's hit point, or where a photon's escaping
+        // ray leaves the scene's box (5-pixel dots).
         if (m_bundlePoints) out.push_back({"photon-splat.bundles", &m_bundlePoints, DebugEncoding::Points, 5.0f});
         for (size_t i = 1; i < kDebugViews.size(); ++i)
             out.push_back({"photon-splat." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
