@@ -322,6 +322,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             m_mapFbo.bind();
             glViewport(0, 0, m_maps.width(), m_maps.height());
             const float one = 1.0f;
+            glDepthMask(GL_TRUE);  // the clear obeys the depth write mask an earlier pass may have left off
             glClearNamedFramebufferfv(m_mapFbo.id(), GL_DEPTH, 0, &one);
             if (!commands.empty()) {
                 m_depthProgram.use();
@@ -332,7 +333,6 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                 ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
                 glEnable(GL_DEPTH_TEST);
                 glDepthFunc(GL_LESS);
-                glDepthMask(GL_TRUE);
                 glDisable(GL_CULL_FACE);  // back faces occlude too: the volume may start inside geometry (4.3)
                 glDisable(GL_BLEND);
                 glDisable(GL_STENCIL_TEST);
