@@ -191,8 +191,8 @@ glm::vec3 albedoAt(const Scene& scene, const RayHit& hit) {
 
 }  // namespace
 
-std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings) {
-    std::vector<Photon> out;
+void injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings, std::vector<Photon>& out) {
+    out.clear();
     glm::vec3 lo, hi;
     scene.bounds(time, lo, hi);
     // Emitters at time t (the lights, then the objects whose material emits), photons split over them
@@ -209,7 +209,7 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
     }
     for (const EmissiveObject& e : objects) weight.push_back(std::max(luminance(e.flux), 0.0f));
     const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
-    if (!(total > 0.0f) || settings.photons == 0) return out;
+    if (!(total > 0.0f) || settings.photons == 0) return;
     for (size_t ei = 0; ei < weight.size(); ++ei) {
         const uint32_t n = static_cast<uint32_t>(std::lround(settings.photons * weight[ei] / total));
         if (n == 0) continue;
@@ -239,7 +239,6 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
             }
         }
     }
-    return out;
 }
 
 std::vector<Photon> stratify(const std::vector<Photon>& photons, glm::vec3 lo, glm::vec3 hi, int gridSize, int threshold,
@@ -315,16 +314,19 @@ void bundleAxes(glm::vec3 w, glm::vec3& right, glm::vec3& up) {
     up = glm::cross(w, right);
 }
 
-std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings) {
-    std::vector<CastRay> rays(photons.size());
+void placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings, std::vector<Bundle>& out,
+                  BundleScratch& scratch) {
+    std::vector<CastRay>& rays = scratch.rays;
+    rays.resize(photons.size());
     for (size_t i = 0; i < photons.size(); ++i) {
         rays[i].origin = offsetRayOrigin(photons[i].position, photons[i].normal);
         rays[i].direction = photons[i].direction;
         rays[i].tMax = settings.maxDistance;
     }
-    std::vector<std::optional<RayHit>> hits(photons.size());
+    std::vector<std::optional<RayHit>>& hits = scratch.hits;
+    hits.assign(photons.size(), std::nullopt);
     caster.closestHits(rays, hits);
-    std::vector<Bundle> out;
+    out.clear();
     const bool keepEscaped = glm::all(glm::lessThanEqual(settings.lo, settings.hi));
     for (size_t i = 0; i < photons.size(); ++i) {
         Bundle b;
@@ -351,7 +353,6 @@ std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCa
         b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
         out.push_back(b);
     }
-    return out;
 }
 
 }  // namespace bounce::photonsplat

@@ -34,7 +34,12 @@ struct InjectionSettings {
 // with power = emitted share x the albedo of every surface it reflected from (the photon then leaves
 // in a cosine-distributed direction about the normal). Light that leaves the scene stores nothing.
 // Deterministic for a seed. Lights with no flux are skipped; no lights give no photons.
-std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings);
+void injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings, std::vector<Photon>& out);
+inline std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings) {
+    std::vector<Photon> out;
+    injectPhotons(scene, time, caster, settings, out);
+    return out;
+}
 
 // §3.2.1 / §4.2: a grid of `gridSize`^3 cells over [lo, hi]; photons are binned by position; the grid
 // is walked in 2x2x2 blocks: a block with any cell holding fewer than `threshold` photons (an empty
@@ -69,7 +74,20 @@ struct BundleSettings {
     // the rays of its cross-section beside its axis may hit the scene. Otherwise they give none.
     glm::vec3 lo{0.0f}, hi{-1.0f};
 };
-std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings);
+// The out-parameter forms refill `out` (and the ray scratch) in place: a renderer calling them every
+// frame keeps their allocations instead of freeing and taking megabytes each frame.
+struct BundleScratch {
+    std::vector<CastRay> rays;
+    std::vector<std::optional<RayHit>> hits;
+};
+void placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings, std::vector<Bundle>& out,
+                  BundleScratch& scratch);
+inline std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings) {
+    std::vector<Bundle> out;
+    BundleScratch scratch;
+    placeBundles(photons, caster, settings, out, scratch);
+    return out;
+}
 
 // Any unit vectors completing w to a right-handed frame (right x up = w).
 void bundleAxes(glm::vec3 w, glm::vec3& right, glm::vec3& up);

@@ -49,12 +49,6 @@ constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first 
 constexpr int kDepthClipPlanes = 7;
 constexpr float kOverlapHeatMax = 64.0f;       // the overlap view's red: bundles per pixel (the defaults reach ~25 mean, ~80 at most)            // depth.vert's clip distances: tile (4), near, far, emitter
 
-struct DrawCommand {  // DrawElementsIndirectCommand
-    GLuint count, instanceCount, firstIndex;
-    GLint baseVertex;
-    GLuint baseInstance;
-};
-
 template <size_t N>
 int indexOf(const std::array<std::string_view, N>& list, std::string_view s) {
     for (size_t i = 0; i < N; ++i)
@@ -210,7 +204,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         inj.seed = static_cast<uint64_t>(m_seed) + (m_reseed ? ctx.frame : 0u);
         if (m_fixedPhotons) m_photonList = *m_fixedPhotons;
         else if (m_injection == "rsm") m_photonList = rsmPhotons(ctx, inj.seed);
-        else m_photonList = photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
+        else photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj, m_photonList);
         ctx.counters["injectMs"] = msSince(t0);
         ctx.counters["photonsStored"] = static_cast<double>(m_photonList.size());
         // What the photons take where they are held: the list's allocation (48 B per Photon).
@@ -228,7 +222,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         photonsplat::BundleSettings bs;
         bs.stepBack = m_back;
         ctx.scene.bounds(ctx.time, bs.lo, bs.hi);  // rays that hit nothing still get a bundle
-        m_bundles = photonsplat::placeBundles(m_photonList, *m_caster, bs);
+        photonsplat::placeBundles(m_photonList, *m_caster, bs, m_bundles, m_bundleScratch);
         ctx.counters["bundleMs"] = msSince(t2);
         ctx.counters["bundles"] = static_cast<double>(m_bundles.size());
     }
@@ -240,7 +234,8 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     volumeSettings.length = m_depth;
     volumeSettings.emitterOffset = m_emitterOffset;
     if (m_depth <= 0.0f) ctx.scene.bounds(ctx.time, volumeSettings.lo, volumeSettings.hi);
-    std::vector<gpu::BundleGpu> gpuBundles(static_cast<size_t>(count));
+    std::vector<gpu::BundleGpu>& gpuBundles = m_gpuBundles;  // kept across frames: no per-frame megabytes
+    gpuBundles.resize(static_cast<size_t>(count));
     for (int i = 0; i < count; ++i) {
         const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
         const photonsplat::BundleVolume v = photonsplat::bundleVolume(m_photonList[b.photon], b, volumeSettings);
@@ -258,7 +253,8 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         const gl::TextureDesc& d = m_bundlePoints.desc();
         const int written = std::min(std::max(count, m_pointsWritten), d.width * d.height);
         const int rows = (written + d.width - 1) / d.width;
-        std::vector<glm::vec4> hits(static_cast<size_t>(rows) * static_cast<size_t>(d.width), glm::vec4(0.0f));
+        std::vector<glm::vec4>& hits = m_pointScratch;
+        hits.assign(static_cast<size_t>(rows) * static_cast<size_t>(d.width), glm::vec4(0.0f));
         for (int i = 0; i < count && i < static_cast<int>(hits.size()); ++i) {
             const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
             hits[static_cast<size_t>(i)] = glm::vec4(m_photonList[b.photon].position + b.hitDistance * b.direction, 1.0f);
@@ -274,10 +270,11 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     const int tiles = m_tiles.x * m_tiles.y;
     int batches = 0;
     double clusterDraws = 0.0, cullMs = 0.0;
-    std::vector<uint32_t> kept, perCluster;
-    std::vector<glm::uvec2> pairs;  // (cluster, bundle)
-    std::vector<DrawCommand> commands;
-    std::vector<glm::uvec2> drawData;
+    std::vector<uint32_t>& kept = m_cull.kept;
+    std::vector<uint32_t>& perCluster = m_cull.perCluster;
+    std::vector<glm::uvec2>& pairs = m_cull.pairs;  // (cluster, bundle)
+    std::vector<DrawCommand>& commands = m_cull.commands;
+    std::vector<glm::uvec2>& drawData = m_cull.drawData;
     for (int first = 0; first < count; first += tiles, ++batches) {
         const int n = std::min(tiles, count - first);
         {
@@ -440,7 +437,8 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
 
 void PhotonSplatTechnique::collectCounters(Counters& out) {
     if (!m_stats) return;
-    std::vector<float> counts(static_cast<size_t>(m_stats.width()) * static_cast<size_t>(m_stats.height()));
+    std::vector<float>& counts = m_overlapScratch;
+    counts.resize(static_cast<size_t>(m_stats.width()) * static_cast<size_t>(m_stats.height()));
     glGetTextureImage(m_stats.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(counts.size() * sizeof(float)), counts.data());
     double sum = 0.0, most = 0.0, pixels = 0.0;
     for (float c : counts)

@@ -5,6 +5,7 @@
 #include "techniques/nichols/RegularVpls.h"
 #include "techniques/photon_splat/BundleVolume.h"
 #include "techniques/photon_splat/PhotonInjection.h"
+#include "techniques/photon_splat/splat_shared.h"
 
 #include <array>
 #include <memory>
@@ -87,6 +88,22 @@ private:
     std::optional<std::vector<photonsplat::Photon>> m_fixedPhotons;
     std::vector<photonsplat::Bundle> m_bundles;
     std::vector<photonsplat::BundleVolume> m_volumes;
+    // Per-frame CPU work space, kept across frames (the soak test holds the process's memory flat).
+    struct DrawCommand {  // DrawElementsIndirectCommand
+        GLuint count, instanceCount, firstIndex;
+        GLint baseVertex;
+        GLuint baseInstance;
+    };
+    struct CullScratch {
+        std::vector<uint32_t> kept, perCluster;
+        std::vector<glm::uvec2> pairs;     // (cluster, bundle)
+        std::vector<DrawCommand> commands;
+        std::vector<glm::uvec2> drawData;  // (bundle, object) per instance
+    } m_cull;
+    photonsplat::BundleScratch m_bundleScratch;
+    std::vector<gpu::BundleGpu> m_gpuBundles;
+    std::vector<glm::vec4> m_pointScratch;
+    std::vector<float> m_overlapScratch;
     photonsplat::ClusterSet m_clusters;
     gl::Buffer m_clusterIndices, m_drawCommands, m_drawData;
     size_t m_drawCapacity = 0;  // commands the two draw buffers hold
