@@ -50,8 +50,8 @@ void BM_PhotonSplatLightLeak(benchmark::State& state) {
         state.SkipWithError("no GL context");
         return;
     }
-    // The automatic width is a tenth of two-rooms' bounds diagonal (4.58 m): 0.458 m.
-    const double width = 0.458 * static_cast<double>(state.range(0)) / 2.0;
+    // The automatic width is a twentieth of two-rooms' bounds diagonal (4.60 m): 0.230 m.
+    const double width = 0.230 * static_cast<double>(state.range(0)) / 2.0;
     state.SetLabel("photon-splat@" + std::to_string(state.range(0) / 2.0).substr(0, 3) + "x");
     state.counters["leak"] = leakOf(state, "photon-splat", {{"estimate", "flux"}, {"photons", "4096"}, {"mapSize", std::to_string(width)}});
 }

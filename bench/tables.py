@@ -99,33 +99,58 @@ def vct_table(rec, path):
 
 def photon_splat_table(rec, path):
     r = rec["results"]
-    mean = lambda rows, key: sorted(x[key] for x in rows)[len(rows) // 2]
+    med_of = lambda rows, key: sorted(x[key] for x in rows)[len(rows) // 2]
+    q = lambda rows, key: med_of([x["vsReference"] for x in rows], key)
     lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); `{rec['command']}`, "
              f"{rec['size']} images, interleaved repetitions, medians; errors against `bounce reference --bounces 1 --indirect-only` "
-             "(relMSE / LDR-FLIP / the document's RMS on 8-bit values, summed over R, G, B). llvmpipe times are indicative.", ""]
+             "(energy = image mean / reference mean, relMSE, LDR-FLIP, the document's RMS on 8-bit values summed over R, G, B); "
+             "photon-splat at its defaults (flux estimate, 2h = diagonal / 20, blur 5) but for the photons and bundle width; "
+             "overlap = bundles per pixel over the pixels some bundle reached, median of the frames' means (largest). "
+             "llvmpipe times are indicative.", ""]
     for scene, e in r.items():
         if not isinstance(e, dict) or "splat" not in e:
             continue
         hq = e["photonMapHq"]
         hq_cmd = re.sub(r" --(out|stats) \S+", "", hq["command"])
         lines += [f"`{scene}` — high-quality photon map (`{hq_cmd}`): {hq['render_ms']:.0f} ms, "
-                  f"relMSE {hq['vsReference']['relMse']:.4f}, RMS {hq['vsReference']['rmsSum8']:.1f}.", "",
-                  "| method | photons | frame / render ms | relMSE | FLIP | RMS (8-bit, Σ RGB) | RMS vs HQ photon map |", "|---|---|---|---|---|---|---|"]
+                  f"relMSE {hq['vsReference']['relMse']:.4f}, energy {hq['vsReference']['energy']:.3f}, RMS {hq['vsReference']['rmsSum8']:.1f}.", "",
+                  "| method | photons | frame / render ms | energy | relMSE | FLIP | RMS (8-bit, Σ RGB) | RMS vs HQ photon map | overlap (M6) |",
+                  "|---|---|---|---|---|---|---|---|---|"]
         for label, rows in e["splat"].items():
             size, n = label.split("/")
-            lines.append(f"| photon-splat, {size} maps{' (3x)' if size == 'large' else ''} | {n} | {mean(rows, 'frame_ms'):.1f} (+{mean(rows, 'cpu_ms'):.1f} CPU) | "
-                         f"{mean([x['vsReference'] for x in rows], 'relMse'):.4f} | {mean([x['vsReference'] for x in rows], 'flipLdr'):.3f} | "
-                         f"{mean([x['vsReference'] for x in rows], 'rmsSum8'):.1f} | {mean([x['vsPhotonMapHq'] for x in rows], 'rmsSum8'):.1f} |")
+            lines.append(f"| photon-splat, {'default bundles' if size == 'small' else '3x wider bundles'} | {n} | "
+                         f"{med_of(rows, 'frame_ms'):.0f} (+{med_of(rows, 'cpu_ms'):.0f} CPU) | {q(rows, 'energy'):.3f} | {q(rows, 'relMse'):.4f} | "
+                         f"{q(rows, 'flipLdr'):.3f} | {q(rows, 'rmsSum8'):.1f} | {med_of([x['vsPhotonMapHq'] for x in rows], 'rmsSum8'):.1f} | "
+                         f"{med_of(rows, 'overlapMean'):.0f} ({med_of(rows, 'overlapMax'):.0f}) |")
+        for label, rows in e["stratified"].items():
+            g, n = label.split("/")
+            lines.append(f"| photon-splat, stratified {g}³, 3x wider bundles (Graph 4) | {n} → {med_of(rows, 'photonsStratified'):.0f} | "
+                         f"{med_of(rows, 'frame_ms'):.0f} (+{med_of(rows, 'cpu_ms'):.0f} CPU) | {q(rows, 'energy'):.3f} | {q(rows, 'relMse'):.4f} | "
+                         f"{q(rows, 'flipLdr'):.3f} | {q(rows, 'rmsSum8'):.1f} | {med_of([x['vsPhotonMapHq'] for x in rows], 'rmsSum8'):.1f} | "
+                         f"{med_of(rows, 'overlapMean'):.0f} ({med_of(rows, 'overlapMax'):.0f}) |")
         for label, rows in e["photonMap"].items():
             n, k = label.split("/")
-            lines.append(f"| photon-map, {k} | {n} | {mean(rows, 'render_ms'):.1f} | {mean([x['vsReference'] for x in rows], 'relMse'):.4f} | "
-                         f"{mean([x['vsReference'] for x in rows], 'flipLdr'):.3f} | {mean([x['vsReference'] for x in rows], 'rmsSum8'):.1f} | — |")
+            lines.append(f"| photon-map, {k} | {n} | {med_of(rows, 'render_ms'):.0f} | {q(rows, 'energy'):.3f} | {q(rows, 'relMse'):.4f} | "
+                         f"{q(rows, 'flipLdr'):.3f} | {q(rows, 'rmsSum8'):.1f} | — | — |")
         m5 = e["mapResolution"]
-        lines += ["", f"M5 depth maps 4² vs 32² (4096 photons): depth-maps {mean(m5['4'], 'depth_maps_ms'):.1f} vs {mean(m5['32'], 'depth_maps_ms'):.1f} ms, "
-                  f"splat {mean(m5['4'], 'splat_ms'):.1f} vs {mean(m5['32'], 'splat_ms'):.1f} ms (document: about the same cost).", ""]
-    if "gridBytes" in r:
-        lines += ["M1 memory: " + f"{r['photonBytesPerPhoton']} B per photon (Table 1 layout); dense stratification grid " +
-                  ", ".join(f"{g}³ {b / 1e6:.1f} MB" for g, b in r["gridBytes"].items()) + " (document: 576–640 MB at 256³)."]
+        lines += ["", f"M5 depth maps 4² vs 32² (16384 photons): depth-maps {med_of(m5['4'], 'depth_maps_ms'):.0f} vs "
+                  f"{med_of(m5['32'], 'depth_maps_ms'):.0f} ms, splat {med_of(m5['4'], 'splat_ms'):.0f} vs {med_of(m5['32'], 'splat_ms'):.0f} ms, "
+                  f"frame {med_of(m5['4'], 'frame_ms'):.0f} vs {med_of(m5['32'], 'frame_ms'):.0f} ms, relMSE {q(m5['4'], 'relMse'):.4f} vs "
+                  f"{q(m5['32'], 'relMse'):.4f} (document, 5.3.1: \"Since we are dealing with thousands of light sources, even a slight "
+                  "increase in resolution causes a large impact on the rendering times.\").", ""]
+        sb = e["stepBack"]
+        lines += [f"Step back (defaults): b = d (bounce) energy {sb['d']['vsReference']['energy']:.3f}, relMSE {sb['d']['vsReference']['relMse']:.4f}; "
+                  f"b = h/4 (the document's \"small\" b) energy {sb['h/4']['vsReference']['energy']:.3f}, relMSE {sb['h/4']['vsReference']['relMse']:.4f}.", ""]
+    if "bias" in r:
+        lines += ["Remaining bias of the flux estimate (energy, mean of seeds, 32768 photons, no blur) over the bundle width 2h: " +
+                  "; ".join(f"`{scene}` " + ", ".join(f"2h x {f}: {sum(x['energy'] for x in v) / len(v):.3f}"
+                                                      for f, v in widths.items()) for scene, widths in r["bias"].items()) + ".", ""]
+    if "memory" in r:
+        m = r["memory"]
+        lines += ["M1 memory (counters: what is allocated): " + f"{m['photonBytesPerPhoton']:.1f} B per stored photon (48-byte Photon, "
+                  "the list's capacity; Table 1: 36 B); stratification grid " +
+                  ", ".join(f"{g}³ {v['gridBytes'] / 1e3:.0f} KB" for g, v in m["gridBytes"].items()) +
+                  " (one 16-byte entry per photon at any resolution; the document's dense grid: 576 MB at 256³)."]
     return "\n".join(lines)
 
 

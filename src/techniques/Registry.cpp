@@ -41,7 +41,7 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         {"multires-splat", "multiresolution splatting: subsplat refinement by geometry shader + transform feedback (Nichols 2010 ch. 3)", "Nichols 2010 thesis ch. 3; Nichols & Wyman, I3D 2009", [] { return std::make_unique<MultiresSplatTechnique>(); }, kOneBounce},
         {"vct", "voxel cone tracing: hybrid voxelization, isotropic / anisotropic / spherical-harmonics radiance, 60-degree cones (Rauwendaal 2013)",
          "Rauwendaal 2013 PhD thesis; Rauwendaal & Bailey, JCGT 2013", [] { return std::make_unique<VctTechnique>(); }, kOneBounce},
-        {"photon-splat", "photon splatting: CPU-traced photons as orthographic bundles with their own depth maps, splatted and normalised (seed 004)",
+        {"photon-splat", "photon splatting: CPU-traced photons as orthographic bundles with their own depth maps, splatted as a calibrated flux estimate (the document's normalisation is a setting; seed 004)",
          "photon splatting with orthographic bundles (seed 004 thesis)", [] { return std::make_unique<PhotonSplatTechnique>(); }, kOneBounce},
         {"radiosity-gather", "hemicube gather radiosity: a radiosity hemicube per element per bounce, integrated with delta form factors (van de Hoef 2013 Alg. 4.1; the radiosity reference)",
          "van de Hoef 2013 MSc thesis; Cohen & Greenberg 1985", [] { return std::make_unique<GatherRadiosityTechnique>(); }, kDiffuseSolution},

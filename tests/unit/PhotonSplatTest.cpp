@@ -4,6 +4,8 @@
 #include "ReferenceTestScenes.h"
 #include "scene/Scene.h"
 #include "scene/SceneLoader.h"
+#include "reference/Rng.h"
+#include "techniques/photon_splat/BundleVolume.h"
 #include "techniques/photon_splat/PhotonInjection.h"
 
 #include <gtest/gtest.h>
@@ -110,6 +112,53 @@ TEST(PhotonSplatInjection, SecondBouncesCarryTheAlbedoAgainAndSeedsRepeat) {
     for (size_t i = 0; i < one.size(); ++i) EXPECT_EQ(again[i].position, one[i].position);
 }
 
+TEST(PhotonSplatInjection, EmissiveSurfacesShootTheirFlux) {
+    // The furnace room: a closed 2 m cube whose inner faces emit Le = 1 and have albedo 0.6, no
+    // lights. Every photon leaves a face and hits another: first-hit power rho pi Le A exactly in
+    // sum (every photon carries the same power, uniform Le), A = 6 faces of 4 m^2.
+    Scene room = testscenes::furnaceRoom(0.6f, 1.0f);
+    ASSERT_TRUE(finalizeScene(room).ok());
+    const std::vector<Photon> photons = shoot(room, 4000);
+    ASSERT_EQ(photons.size(), 4000u);
+    const float flux = glm::pi<float>() * 1.0f * 24.0f;
+    EXPECT_NEAR(totalPower(photons).r, 0.6f * flux, 1e-3f * flux);
+    for (const Photon& p : photons) EXPECT_LT(glm::length(p.position), std::sqrt(3.0f) + 1e-3f);  // inside the cube
+}
+
+TEST(PhotonSplatInjection, TexturedAreaLightsCarryTheirTexturesFlux) {
+    // A 1 m^2 area light 1 m above the plane, facing down, textured left half white, right half black:
+    // the emitted flux is pi L A times the texture's mean (1/2), and no photon leaves the black half.
+    Light area;
+    area.type = LightType::Area;
+    area.position = {0.0f, 1.0f, 0.0f};
+    area.edgeU = {1.0f, 0.0f, 0.0f};
+    area.edgeV = {0.0f, 0.0f, 1.0f};  // normal cross(u, v) = -y: faces the plane
+    area.radiance = glm::vec3(2.0f);
+    Scene scene = planeWith(Light{});
+    scene.lights.clear();
+    Image halves(2, 1);
+    halves.at(0, 0) = glm::vec3(1.0f);
+    halves.at(1, 0) = glm::vec3(0.0f);
+    scene.textures.push_back({"halves", halves});
+    area.texture.kind = AreaTexture::Kind::Images;
+    area.texture.frames = {static_cast<uint32_t>(scene.textures.size() - 1)};
+    scene.lights.push_back(area);
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    const std::vector<Photon> photons = shoot(scene, 20000);
+    // Cosine directions from 1 m over a 40 m plane: all but ~0.06 % land (cos^2 of the escaping
+    // angles). Photons on the white half carry 2 pi L A / n each, so the sum is their count's
+    // binomial noise: 0.7 % standard error at n = 20,000; 3.5 % is five of it (a texture ignored
+    // doubles the sum, a mean applied twice halves it).
+    const float expected = kRho * glm::pi<float>() * 2.0f * 1.0f * 0.5f;
+    EXPECT_NEAR(totalPower(photons).r, expected, 0.035f * expected);
+    EXPECT_GT(photons.size(), 9650u);  // half the 20,000 start on black texels and are not shot (5 sigma)
+    EXPECT_LT(photons.size(), 10350u);
+    // Two-sided: twice the flux, half of it (the back, facing up) escapes the open plane; a quarter of
+    // the photons land, each with 4 pi L A / n: 1.2 % standard error, bound five of it.
+    scene.lights[0].twoSided = true;
+    EXPECT_NEAR(totalPower(shoot(scene, 20000)).r, expected, 0.06f * expected);
+}
+
 TEST(PhotonSplatStratification, ConservesPowerAndMergesSparseBlocks) {
     // 2x2x2 cells over [0, 2]^3 (one block): seven cells with 3 photons, one cell with 1.
     std::vector<Photon> photons;
@@ -123,7 +172,8 @@ TEST(PhotonSplatStratification, ConservesPowerAndMergesSparseBlocks) {
     ASSERT_EQ(merged.size(), 1u);  // one cell under the threshold: the block becomes one photon
     EXPECT_EQ(st.mergedBlocks, 1u);
     EXPECT_NEAR(merged[0].power.r, totalPower(photons).r, 1e-4f);
-    EXPECT_EQ(st.gridBytes, 8u * kThesisCellBytes);
+    // The grid holds one 16-byte entry (cell key, photon index) per photon inside it: what it allocated.
+    EXPECT_EQ(st.gridBytes, photons.size() * 16u);
     // Threshold 1: every cell is dense enough, one photon per cell, power still conserved.
     const auto perCell = stratify(photons, glm::vec3(0.0f), glm::vec3(2.0f), 2, 1, 1, &st);
     EXPECT_EQ(perCell.size(), 8u);
@@ -142,6 +192,37 @@ TEST(PhotonSplatStratification, ConservesPowerAndMergesSparseBlocks) {
     EXPECT_NEAR(totalPower(strat).r, totalPower(shot).r, 1e-3f * totalPower(shot).r);  // float sums
 }
 
+TEST(PhotonSplatStratification, AnEmptyCellMergesItsBlockAsTheDocumentSays) {
+    // §4.2: "If one of those cells contains less photons than the threshold parameter, the colors of
+    // all 8 cells are combined". Seven cells of one block hold 3 photons each and the eighth none:
+    // with threshold 2 the empty cell is below it, so the block becomes one photon.
+    std::vector<Photon> photons;
+    for (int c = 0; c < 8; ++c) {
+        if (c == 6) continue;
+        const glm::vec3 centre(0.5f + float(c & 1), 0.5f + float((c >> 1) & 1), 0.5f + float((c >> 2) & 1));
+        for (int i = 0; i < 3; ++i) photons.push_back(Photon{centre + glm::vec3(0.01f * i), glm::vec3(1.0f), {0, 1, 0}, {0, 1, 0}});
+    }
+    StratifyStats st;
+    const auto merged = stratify(photons, glm::vec3(0.0f), glm::vec3(2.0f), 2, 2, 1, &st);
+    ASSERT_EQ(merged.size(), 1u);
+    EXPECT_EQ(st.mergedBlocks, 1u);
+    EXPECT_NEAR(merged[0].power.r, 21.0f, 1e-4f);
+    // Threshold 0: no cell is below it, empty or not; each of the seven non-empty cells is one photon.
+    const auto perCell = stratify(photons, glm::vec3(0.0f), glm::vec3(2.0f), 2, 0, 1, &st);
+    EXPECT_EQ(perCell.size(), 7u);
+    EXPECT_EQ(st.mergedBlocks, 0u);
+    // Two blocks (a 4^3 grid): the full one (8 cells of 3) stays per cell, the one with empty cells merges.
+    std::vector<Photon> two;
+    for (int c = 0; c < 8; ++c)
+        for (int i = 0; i < 3; ++i)
+            two.push_back(Photon{glm::vec3(0.5f + float(c & 1), 0.5f + float((c >> 1) & 1), 0.5f + float((c >> 2) & 1)), glm::vec3(1.0f), {0, 1, 0}, {0, 1, 0}});
+    for (int i = 0; i < 5; ++i) two.push_back(Photon{glm::vec3(3.5f, 0.5f, 0.5f), glm::vec3(1.0f), {0, 1, 0}, {0, 1, 0}});
+    const auto mixed = stratify(two, glm::vec3(0.0f), glm::vec3(4.0f), 4, 2, 1, &st);
+    EXPECT_EQ(mixed.size(), 9u);
+    EXPECT_EQ(st.mergedBlocks, 1u);
+    EXPECT_NEAR(totalPower(mixed).r, 29.0f, 1e-4f);
+}
+
 TEST(PhotonSplatBundles, StepBackFromTheHitAlongThePhotonsRay) {
     const Scene scene = planeWith(Light{});
     auto caster = RayCaster::create(scene, 0.0f, GeometryFilter::All);
@@ -157,7 +238,82 @@ TEST(PhotonSplatBundles, StepBackFromTheHitAlongThePhotonsRay) {
     EXPECT_NEAR(bundles[0].origin.x, 0.3f, 1e-6f);
     EXPECT_NEAR(glm::dot(bundles[0].right, bundles[0].up), 0.0f, 1e-6f);
     EXPECT_NEAR(glm::dot(glm::cross(bundles[0].right, bundles[0].up), bundles[0].direction), 1.0f, 1e-5f);
-    // b never exceeds half the hit distance.
+    // b never exceeds the hit distance: C never lies behind the photon.
     s.stepBack = 5.0f;
-    EXPECT_NEAR(placeBundles({down}, *caster, s)[0].origin.y, 1.0f, 1e-4f);
+    EXPECT_NEAR(placeBundles({down}, *caster, s)[0].origin.y, 2.0f, 1e-4f);
+}
+
+TEST(PhotonSplatBundles, EscapingPhotonsKeepABundleToTheBoxsEdge) {
+    const Scene scene = planeWith(Light{});
+    auto caster = RayCaster::create(scene, 0.0f, GeometryFilter::All);
+    ASSERT_TRUE(caster.ok());
+    const Photon up{{0.0f, 1.0f, 0.0f}, glm::vec3(1.0f), glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f)), {0.0f, 1.0f, 0.0f}};
+    BundleSettings s;
+    s.lo = glm::vec3(-20.0f, 0.0f, -20.0f);
+    s.hi = glm::vec3(20.0f, 2.0f, 20.0f);
+    const auto bundles = placeBundles({up}, *caster, s);
+    ASSERT_EQ(bundles.size(), 1u);
+    EXPECT_TRUE(bundles[0].escaped);
+    EXPECT_NEAR(bundles[0].hitDistance, 1.0f / up.direction.y, 1e-4f);  // leaves through y = 2
+}
+
+TEST(PhotonSplatBundles, TheVolumeAndItsCullingMatchDirectGeometry) {
+    // A 10 x 10 m floor of 0.25 m cells (3200 triangles, 50 clusters of 64) and bundles in random
+    // directions: every floor point inside a volume belongs to a cluster the culling keeps (it is
+    // conservative), and the culling keeps few clusters for a narrow bundle.
+    Scene scene;
+    Mesh floor;
+    floor.name = "floor";
+    constexpr int kCells = 40;
+    for (int z = 0; z <= kCells; ++z)
+        for (int x = 0; x <= kCells; ++x) floor.positions.push_back({-5.0f + 0.25f * x, 0.0f, -5.0f + 0.25f * z});
+    for (int z = 0; z < kCells; ++z)
+        for (int x = 0; x < kCells; ++x) {
+            const uint32_t a = static_cast<uint32_t>(z * (kCells + 1) + x), b = a + 1, c = a + kCells + 1, d = c + 1;
+            floor.indices.insert(floor.indices.end(), {a, c, b, b, c, d});
+        }
+    scene.meshes.push_back(floor);
+    scene.materials.push_back(Material{});
+    Object o;
+    o.name = "floor";
+    scene.objects.push_back(o);
+    ClusterSet clusters = ClusterSet::build(scene, 64);
+    clusters.update(scene, 0.0f);
+    ASSERT_EQ(clusters.clusters().size(), 50u);
+    Rng rng(5, 0, 0);
+    for (int i = 0; i < 50; ++i) {
+        Photon ph;
+        ph.position = {-2.0f + 4.0f * rng.next(), 1.0f + rng.next(), -2.0f + 4.0f * rng.next()};  // hits within 2.5 m: on the floor
+        ph.normal = {0.0f, -1.0f, 0.0f};
+        const float theta = 0.9f * rng.next(), phi = 6.2831853f * rng.next();
+        ph.direction = {std::sin(theta) * std::cos(phi), -std::cos(theta), std::sin(theta) * std::sin(phi)};
+        Bundle b;
+        b.direction = ph.direction;
+        bundleAxes(b.direction, b.right, b.up);
+        b.hitDistance = -ph.position.y / ph.direction.y;
+        b.hitNormal = {0.0f, 1.0f, 0.0f};
+        VolumeSettings vs;
+        vs.half = 0.3f;
+        vs.stepBack = i % 2 == 0 ? 1e30f : 0.2f;  // from the photon, or the document's small step back
+        b.origin = ph.position + (b.hitDistance - std::min(vs.stepBack, b.hitDistance)) * ph.direction;  // C, as placeBundles puts it
+        vs.lo = glm::vec3(-5.0f, 0.0f, -5.0f);
+        vs.hi = glm::vec3(5.0f, 0.0f, 5.0f);
+        const BundleVolume v = bundleVolume(ph, b, vs);
+        // The hit lies inside; the point straight behind the photon does not.
+        EXPECT_TRUE(v.contains(ph.position + b.hitDistance * ph.direction)) << i;
+        EXPECT_FALSE(v.contains(ph.position - 0.1f * ph.direction)) << i;
+        std::vector<uint32_t> kept;
+        clusters.cull(v, kept);
+        EXPECT_LT(kept.size(), 20u) << i;
+        for (size_t k = 0; k < floor.indices.size(); ++k) {
+            const glm::vec3 p = floor.positions[floor.indices[k]];
+            if (!v.contains(p)) continue;
+            bool found = false;
+            for (uint32_t c : kept) {
+                const ClusterSet::Cluster& cl = clusters.clusters()[c];
+                for (uint32_t j = cl.firstIndex; j < cl.firstIndex + cl.indexCount && !found; ++j) found = clusters.indices()[j] == floor.indices[k];
+            }
+            EXPECT_TRUE(found) << "bundle " << i << " vertex " << floor.indices[k];
+        }
+    }
 }

@@ -4,13 +4,14 @@
 #include "reference/Rng.h"
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
+#include "scene/AreaTexture.h"
 
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
-#include <unordered_map>
 
 namespace bounce::photonsplat {
 
@@ -25,10 +26,31 @@ glm::vec3 uniformSphere(float u1, float u2) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+// The rectangle, across a directional light's direction d, that holds the scene's box [lo, hi] as
+// the light sees it: offsets (t, b) from the box centre along Frame(d)'s t and b axes.
+struct SunRectangle {
+    glm::vec2 min{0.0f}, max{0.0f};
+    float area() const { return (max.x - min.x) * (max.y - min.y); }
+};
+SunRectangle sunRectangle(glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
+    const Frame f(d);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    SunRectangle r{glm::vec2(std::numeric_limits<float>::infinity()), glm::vec2(-std::numeric_limits<float>::infinity())};
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 c((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+        const glm::vec2 q(glm::dot(c - centre, f.t), glm::dot(c - centre, f.b));
+        r.min = glm::min(r.min, q);
+        r.max = glm::max(r.max, q);
+    }
+    return r;
+}
+
 // Flux a light sends into the scene (W per channel). Directional lights: the irradiance through the
-// disc that covers the scene's bounding sphere.
-glm::vec3 emittedFlux(const Light& l, float sceneRadius) {
-    if (l.type == LightType::Directional) return l.irradiance * (kPi * sceneRadius * sceneRadius);
+// rectangle that holds the scene's box as the light sees it. A textured area light: times its
+// texture's mean now.
+glm::vec3 emittedFlux(const Scene& scene, const Light& l, glm::vec3 lo, glm::vec3 hi, float time) {
+    if (l.type == LightType::Directional) return l.irradiance * sunRectangle(glm::normalize(l.direction), lo, hi).area();
+    if (l.type == LightType::Area) return l.flux() * areaTextureMean(scene, l, time);
     return l.flux();
 }
 
@@ -36,9 +58,19 @@ struct Emission {
     glm::vec3 origin, direction, power;
 };
 
-// One emitted photon of light l with numbers u[0..3]; `share` is its share (1/n) of the light's flux.
-Emission emit(const Light& l, const float u[4], glm::vec3 centre, float radius, glm::vec3 share, uint32_t n) {
-    Emission e{l.position, glm::vec3(0.0f, -1.0f, 0.0f), share};
+// The texel of a textured area light at (u, v) (nearest, as the reference reads it: column from u,
+// row 0 at v = 1; EmitterTexture::texelAt).
+glm::vec3 areaTexel(const Image& image, float u, float v) {
+    const int c = std::clamp(static_cast<int>(u * static_cast<float>(image.width())), 0, image.width() - 1);
+    const int r = std::clamp(static_cast<int>((1.0f - v) * static_cast<float>(image.height())), 0, image.height() - 1);
+    return image.at(c, r);
+}
+
+// One emitted photon of light l with random numbers from `rng`; the photon carries the light's flux
+// `flux` divided by the n photons it shoots (an estimate whose sum over the n is the flux).
+Emission emit(const Light& l, Rng& rng, glm::vec3 lo, glm::vec3 hi, glm::vec3 flux, uint32_t n, const Image* texture) {
+    const float u[4] = {rng.next(), rng.next(), rng.next(), rng.next()};
+    Emission e{l.position, glm::vec3(0.0f, -1.0f, 0.0f), flux / static_cast<float>(n)};
     switch (l.type) {
         case LightType::Point: e.direction = uniformSphere(u[0], u[1]); break;
         case LightType::Spot: {
@@ -57,21 +89,97 @@ Emission emit(const Light& l, const float u[4], glm::vec3 centre, float radius, 
             break;
         }
         case LightType::Directional: {
+            // Uniform over the rectangle that holds the scene's box, starting outside the box.
             const glm::vec3 d = glm::normalize(l.direction);
             const Frame f(d);
-            const float r = radius * std::sqrt(u[0]), phi = 2.0f * kPi * u[1];
-            e.origin = centre - d * (2.0f * radius) + f.toWorld({r * std::cos(phi), r * std::sin(phi), 0.0f});
+            const SunRectangle r = sunRectangle(d, lo, hi);
+            const glm::vec2 q = glm::mix(r.min, r.max, glm::vec2(u[0], u[1]));
+            e.origin = 0.5f * (lo + hi) - d * glm::length(hi - lo) + q.x * f.t + q.y * f.b;
             e.direction = d;
             break;
         }
         case LightType::Area: {
+            // Uniform point, cosine direction about the emitting side: power pi L A / n per side (times
+            // the texel there for a textured light: uniform points weighted by the texture estimate
+            // pi A mean(L texel), the flux emittedFlux() splits photons by). A two-sided light picks a
+            // side at random; its back shows the texture mirrored in u (Scene.h).
+            const bool back = l.twoSided && rng.next() < 0.5f;
             e.origin = l.position + (u[0] - 0.5f) * l.edgeU + (u[1] - 0.5f) * l.edgeV;
-            const Frame f(l.areaNormal());
+            const Frame f(back ? -l.areaNormal() : l.areaNormal());
             e.direction = f.toWorld(cosineHemisphere(u[2], u[3]));
+            const glm::vec3 base = l.radiance * (kPi * l.area() * (l.twoSided ? 2.0f : 1.0f)) / static_cast<float>(n);
+            e.power = texture ? base * areaTexel(*texture, back ? 1.0f - u[0] : u[0], u[1]) : base;
             break;
         }
     }
     return e;
+}
+
+// The triangles of an object whose material emits (Material::emission, W/(m^2 sr)), in world space at
+// one time, with the cumulative areas that pick one uniformly by area.
+struct EmissiveObject {
+    const Object* object = nullptr;
+    const Material* material = nullptr;
+    std::vector<glm::vec3> corners;  // 3 per triangle, world space
+    std::vector<glm::vec2> uvs;      // 3 per triangle (zero without mesh uvs)
+    std::vector<double> cdf;         // cumulative world areas, m^2
+    glm::vec3 flux{0.0f};            // estimate used to split photons: sides pi A Le times the texture's mean
+};
+
+std::vector<EmissiveObject> emissiveObjects(const Scene& scene, float time) {
+    std::vector<EmissiveObject> out;
+    for (const Object& o : scene.objects) {
+        const Material& m = scene.materials[o.material];
+        if (!(maxComponent(m.emission) > 0.0f)) continue;
+        const Mesh& mesh = scene.meshes[o.mesh];
+        const glm::mat4 world = o.worldFromObject(time);
+        EmissiveObject e;
+        e.object = &o;
+        e.material = &m;
+        double area = 0.0;
+        for (size_t t = 0; t < mesh.triangleCount(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t i = mesh.indices[3 * t + static_cast<size_t>(k)];
+                e.corners.push_back(glm::vec3(world * glm::vec4(mesh.positions[i], 1.0f)));
+                e.uvs.push_back(i < mesh.uvs.size() ? mesh.uvs[i] : glm::vec2(0.0f));
+                if (k == 2) {
+                    const size_t c = e.corners.size() - 3;
+                    area += 0.5 * glm::length(glm::cross(e.corners[c + 1] - e.corners[c], e.corners[c + 2] - e.corners[c]));
+                    e.cdf.push_back(area);
+                }
+            }
+        if (!(area > 0.0)) continue;
+        const glm::vec3 mean = m.emissionTexture >= 0 ? imageMean(scene.textures[static_cast<size_t>(m.emissionTexture)].image) : glm::vec3(1.0f);
+        e.flux = m.emission * mean * static_cast<float>(kPi * area * (m.twoSided ? 2.0 : 1.0));
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
+// One photon of an emissive object: a triangle by area, a uniform point on it, a cosine direction
+// about its front (a random side when two-sided); power sides pi A Le texel(uv) / n (A the object's
+// area), so the n photons' sum estimates the object's flux.
+Emission emitFromObject(const Scene& scene, const EmissiveObject& e, Rng& rng, uint32_t n) {
+    const double total = e.cdf.back();
+    const double pick = static_cast<double>(rng.next()) * total;
+    const size_t t = std::min<size_t>(static_cast<size_t>(std::upper_bound(e.cdf.begin(), e.cdf.end(), pick) - e.cdf.begin()), e.cdf.size() - 1);
+    const glm::vec2 b = uniformTriangle(rng.next(), rng.next());
+    const glm::vec3 a = e.corners[3 * t], p1 = e.corners[3 * t + 1], p2 = e.corners[3 * t + 2];
+    glm::vec3 normal = glm::normalize(glm::cross(p1 - a, p2 - a));
+    const bool twoSided = e.material->twoSided;
+    if (twoSided && rng.next() < 0.5f) normal = -normal;
+    Emission out;
+    out.origin = a + b.x * (p1 - a) + b.y * (p2 - a);
+    const Frame f(normal);
+    out.direction = f.toWorld(cosineHemisphere(rng.next(), rng.next()));
+    out.origin = offsetRayOrigin(out.origin, normal);
+    glm::vec3 le = e.material->emission;
+    if (e.material->emissionTexture >= 0) {
+        const glm::vec2 uv = e.uvs[3 * t] + b.x * (e.uvs[3 * t + 1] - e.uvs[3 * t]) + b.y * (e.uvs[3 * t + 2] - e.uvs[3 * t]);
+        le *= lookupBilinearRepeat(scene.textures[static_cast<size_t>(e.material->emissionTexture)].image, uv);
+    }
+    out.power = le * static_cast<float>(kPi * total * (twoSided ? 2.0 : 1.0)) / static_cast<float>(n);
+    return out;
 }
 
 glm::vec3 albedoAt(const Scene& scene, const RayHit& hit) {
@@ -83,29 +191,35 @@ glm::vec3 albedoAt(const Scene& scene, const RayHit& hit) {
 
 }  // namespace
 
-std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings) {
-    std::vector<Photon> out;
+void injectPhotons(const Scene& scene, float time, const RayCaster& caster, const InjectionSettings& settings, std::vector<Photon>& out) {
+    out.clear();
     glm::vec3 lo, hi;
     scene.bounds(time, lo, hi);
-    const glm::vec3 centre = 0.5f * (lo + hi);
-    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
-    // Lights at time t, photons split over them by flux (luminance).
+    // Emitters at time t (the lights, then the objects whose material emits), photons split over them
+    // by flux (luminance).
     std::vector<Light> lights;
     for (const Light& l : scene.lights) lights.push_back(l.at(time));
+    const std::vector<EmissiveObject> objects = emissiveObjects(scene, time);
+    std::vector<Image> scratch(lights.size());
+    std::vector<const Image*> textures;
     std::vector<float> weight;
-    for (const Light& l : lights) weight.push_back(std::max(luminance(emittedFlux(l, radius)), 0.0f));
-    const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
-    if (!(total > 0.0f) || settings.photons == 0) return out;
     for (size_t li = 0; li < lights.size(); ++li) {
-        const Light& l = lights[li];
-        const uint32_t n = static_cast<uint32_t>(std::lround(settings.photons * weight[li] / total));
+        textures.push_back(lights[li].type == LightType::Area ? areaTextureAt(scene, lights[li], time, scratch[li]) : nullptr);
+        weight.push_back(std::max(luminance(emittedFlux(scene, lights[li], lo, hi, time)), 0.0f));
+    }
+    for (const EmissiveObject& e : objects) weight.push_back(std::max(luminance(e.flux), 0.0f));
+    const float total = std::accumulate(weight.begin(), weight.end(), 0.0f);
+    if (!(total > 0.0f) || settings.photons == 0) return;
+    for (size_t ei = 0; ei < weight.size(); ++ei) {
+        const uint32_t n = static_cast<uint32_t>(std::lround(settings.photons * weight[ei] / total));
         if (n == 0) continue;
-        const glm::vec3 share = emittedFlux(l, radius) / static_cast<float>(n);
         for (uint32_t i = 0; i < n; ++i) {
-            Rng rng(settings.seed, li, i);
-            const float u[4] = {rng.next(), rng.next(), rng.next(), rng.next()};
-            Emission e = emit(l, u, centre, radius, share, n);
+            Rng rng(settings.seed, ei, i);
+            const Emission e = ei < lights.size()
+                                   ? emit(lights[ei], rng, lo, hi, emittedFlux(scene, lights[ei], lo, hi, time), n, textures[ei])
+                                   : emitFromObject(scene, objects[ei - lights.size()], rng, n);
             glm::vec3 origin = e.origin, dir = e.direction, power = e.power;
+            if (!(maxComponent(power) > 0.0f)) continue;  // a black texel
             for (uint32_t b = 0; b < settings.bounces; ++b) {
                 const std::optional<RayHit> hit = caster.closestHit(origin, dir);
                 if (!hit) break;
@@ -125,7 +239,6 @@ std::vector<Photon> injectPhotons(const Scene& scene, float time, const RayCaste
             }
         }
     }
-    return out;
 }
 
 std::vector<Photon> stratify(const std::vector<Photon>& photons, glm::vec3 lo, glm::vec3 hi, int gridSize, int threshold,
@@ -133,60 +246,64 @@ std::vector<Photon> stratify(const std::vector<Photon>& photons, glm::vec3 lo, g
     const int g = std::max(gridSize, 2) & ~1;  // whole 2x2x2 blocks
     const glm::vec3 extent = glm::max(hi - lo, glm::vec3(1e-6f));
     std::vector<Photon> out;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> cells;  // dense in the thesis, sparse storage here
-    auto cellOf = [&](glm::vec3 p, glm::ivec3& c) {
-        c = glm::ivec3(glm::floor((p - lo) / extent * static_cast<float>(g)));
-        return glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThan(c, glm::ivec3(g)));
+    // The grid: one entry per photon inside it, sorted so that each 2x2x2 block's photons are
+    // contiguous, and within a block each cell's (the thesis indexes its array by grid cell; bounce
+    // sorts, so the grid takes memory per photon, not per cell).
+    struct Entry {
+        uint64_t key;  // block index * 8 + cell within the block
+        uint32_t photon;
     };
+    std::vector<Entry> grid;
+    grid.reserve(photons.size());
+    const uint64_t blocksPerSide = static_cast<uint64_t>(g / 2);
     for (uint32_t i = 0; i < photons.size(); ++i) {
-        glm::ivec3 c;
-        if (!cellOf(photons[i].position, c)) {
+        const glm::vec3 p = photons[i].position;
+        if (!glm::all(glm::greaterThanEqual(p, lo)) || !glm::all(glm::lessThanEqual(p, hi))) {
             out.push_back(photons[i]);  // outside the grid: kept (the thesis ignores or cascades them)
             continue;
         }
-        cells[static_cast<uint64_t>(c.x) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(c.y) + static_cast<uint64_t>(g) * c.z)].push_back(i);
+        // The grid is closed: a photon on its upper faces (a ceiling on the scene's bounds) is in the last cell.
+        const glm::ivec3 c = glm::min(glm::ivec3(glm::floor((p - lo) / extent * static_cast<float>(g))), glm::ivec3(g - 1));
+        const glm::uvec3 b(c / 2), k(c % 2);
+        const uint64_t block = b.x + blocksPerSide * (b.y + blocksPerSide * static_cast<uint64_t>(b.z));
+        grid.push_back({block * 8 + (k.x + 2 * k.y + 4 * k.z), i});
     }
+    std::sort(grid.begin(), grid.end(), [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.photon < b.photon; });
     size_t merged = 0;
-    auto combine = [&](const std::vector<uint32_t>& members, uint64_t key) {
-        Rng rng(seed, key, members.size());
-        const uint32_t pick = members[std::min<size_t>(members.size() - 1, static_cast<size_t>(rng.next() * members.size()))];
-        Photon p = photons[pick];
+    auto combine = [&](size_t first, size_t last, uint64_t key) {
+        Rng rng(seed, key, last - first);
+        const size_t pick = first + std::min(last - first - 1, static_cast<size_t>(rng.next() * static_cast<float>(last - first)));
+        Photon p = photons[grid[pick].photon];
         p.power = glm::vec3(0.0f);
-        for (uint32_t m : members) p.power += photons[m].power;
+        for (size_t e = first; e < last; ++e) p.power += photons[grid[e].photon].power;
         out.push_back(p);
     };
-    for (int bz = 0; bz < g; bz += 2)
-        for (int by = 0; by < g; by += 2)
-            for (int bx = 0; bx < g; bx += 2) {
-                const std::vector<uint32_t>* block[8];
-                bool sparse = false, any = false;
-                for (int k = 0; k < 8; ++k) {
-                    const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + ((k >> 2) & 1);
-                    auto it = cells.find(static_cast<uint64_t>(x) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(y) + static_cast<uint64_t>(g) * z));
-                    block[k] = it == cells.end() ? nullptr : &it->second;
-                    if (block[k]) {
-                        any = true;
-                        if (static_cast<int>(block[k]->size()) < threshold) sparse = true;
-                    }
-                }
-                if (!any) continue;
-                const uint64_t key = static_cast<uint64_t>(bx) + static_cast<uint64_t>(g) * (static_cast<uint64_t>(by) + static_cast<uint64_t>(g) * bz);
-                if (sparse) {
-                    std::vector<uint32_t> members;
-                    for (auto* c : block)
-                        if (c) members.insert(members.end(), c->begin(), c->end());
-                    combine(members, key);
-                    ++merged;
-                } else {
-                    for (int k = 0; k < 8; ++k)
-                        if (block[k]) combine(*block[k], key * 8 + static_cast<uint64_t>(k));
-                }
+    for (size_t first = 0; first < grid.size();) {
+        const uint64_t block = grid[first].key / 8;
+        size_t last = first;
+        int count[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        while (last < grid.size() && grid[last].key / 8 == block) ++count[grid[last++].key % 8];
+        // §4.2: "If one of those cells contains less photons than the threshold parameter, the colors
+        // of all 8 cells are combined": an empty cell holds 0 photons, so it counts.
+        const bool sparse = std::any_of(count, count + 8, [&](int n) { return n < threshold; });
+        if (sparse) {
+            combine(first, last, block * 8);
+            ++merged;
+        } else {
+            for (size_t cell = first; cell < last;) {
+                size_t end = cell;
+                while (end < last && grid[end].key == grid[cell].key) ++end;
+                combine(cell, end, grid[cell].key + 1);
+                cell = end;
             }
+        }
+        first = last;
+    }
     if (stats) {
         stats->inputPhotons = photons.size();
         stats->outputPhotons = out.size();
         stats->mergedBlocks = merged;
-        stats->gridBytes = static_cast<size_t>(g) * g * g * kThesisCellBytes;
+        stats->gridBytes = grid.capacity() * sizeof(Entry);
     }
     return out;
 }
@@ -197,28 +314,45 @@ void bundleAxes(glm::vec3 w, glm::vec3& right, glm::vec3& up) {
     up = glm::cross(w, right);
 }
 
-std::vector<Bundle> placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings) {
-    std::vector<CastRay> rays(photons.size());
+void placeBundles(const std::vector<Photon>& photons, const RayCaster& caster, const BundleSettings& settings, std::vector<Bundle>& out,
+                  BundleScratch& scratch) {
+    std::vector<CastRay>& rays = scratch.rays;
+    rays.resize(photons.size());
     for (size_t i = 0; i < photons.size(); ++i) {
         rays[i].origin = offsetRayOrigin(photons[i].position, photons[i].normal);
         rays[i].direction = photons[i].direction;
         rays[i].tMax = settings.maxDistance;
     }
-    std::vector<std::optional<RayHit>> hits(photons.size());
+    std::vector<std::optional<RayHit>>& hits = scratch.hits;
+    hits.assign(photons.size(), std::nullopt);
     caster.closestHits(rays, hits);
-    std::vector<Bundle> out;
+    out.clear();
+    const bool keepEscaped = glm::all(glm::lessThanEqual(settings.lo, settings.hi));
     for (size_t i = 0; i < photons.size(); ++i) {
-        if (!hits[i]) continue;
         Bundle b;
-        b.hitDistance = hits[i]->t;
-        const float back = std::min(settings.stepBack, 0.5f * b.hitDistance);
         b.direction = photons[i].direction;
-        b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
         bundleAxes(b.direction, b.right, b.up);
         b.power = photons[i].power;
+        b.photon = static_cast<uint32_t>(i);
+        if (hits[i]) {
+            b.hitDistance = hits[i]->t;
+            b.hitNormal = hits[i]->frontFacing ? hits[i]->geometricNormal : -hits[i]->geometricNormal;
+        } else {
+            if (!keepEscaped) continue;
+            // Where the ray leaves the box (slab test; the photon lies inside it).
+            float exit = std::numeric_limits<float>::infinity();
+            for (int k = 0; k < 3; ++k)
+                if (b.direction[k] != 0.0f)
+                    exit = std::min(exit, ((b.direction[k] > 0.0f ? settings.hi[k] : settings.lo[k]) - photons[i].position[k]) / b.direction[k]);
+            if (!(exit > 0.0f) || !std::isfinite(exit)) continue;
+            b.hitDistance = exit;
+            b.hitNormal = -b.direction;
+            b.escaped = true;
+        }
+        const float back = b.escaped ? b.hitDistance : std::min(settings.stepBack, b.hitDistance);  // C never behind P
+        b.origin = photons[i].position + (b.hitDistance - back) * b.direction;
         out.push_back(b);
     }
-    return out;
 }
 
 }  // namespace bounce::photonsplat

@@ -1,35 +1,22 @@
-// `photon-splat` — photon splatting with orthographic bundles (seed 004: a thesis whose title page
-// is lost; "photon splatting", ch. 3-4) on the GPU pipeline the document suggests.
-//
-// Passes per frame:
-//  1. "inject" (CPU, §3.2 method A): photons shot from the lights through the Embree ray-casting
-//     service; at the first diffuse hit each stores position, power (its share of the light's flux
-//     times the albedo) and a cosine-distributed direction about the normal; `bounces` > 1 stores
-//     the next hits too (PhotonInjection.cpp).
-//  2. "stratify" (CPU, optional, §3.2.1/§4.2): a dense grid over the scene, one level of 2x2x2 block
-//     merging under a photon-count threshold, one random representative per cell or block carrying
-//     the summed power.
-//  3. "bundles" (CPU, §3.3/§4.3, Fig. 4): per photon a ray along its direction to the first hit at
-//     distance d, a step back by b: the orthographic frustum starts at C = P + (d - b) w, looks along
-//     w, is 2h x 2h wide and D deep.
-//  4. "depth-maps": each bundle's r x r depth map of the scene (back faces included: no culling),
-//     layers of a texture array, up to the array limit per batch.
-//  5. "splat": per bundle one screen rectangle around its box; each G-buffer pixel inside it gets the
-//     Lambert splat S = max(0, -w.N) C A with a box, tent or Gaussian weight and the tolerant depth
-//     test, accumulated with the weight in alpha by additive blending (splat.frag).
-//  6. "resolve": normalisation sum(w S) / sum(w) with the ambient fallback and the exposure (§3.4,
-//     §4.4), or bounce's calibrated flux estimate; debug views.
-//  7. "blur" (optional, §3.5): separable Gaussian, 3..9 pixels.
-// Combine (§3.6) is the pipeline's full = direct + indirect.
-//
-// With injection=rsm, pass 1 is the document's method B: the regular VPLs of the shared reflective
-// shadow map (techniques/nichols) read back as photons.
-//
-// Deviations (docs/techniques/photon-splat.md): CPU injection per frame with a fixed seed; C = photon
-// power / (pi (2h)^2), the beam's radiance, since the document leaves the colour's scale to the
-// exposure; the `flux` estimate (not in the document) makes the splat an estimator of one-bounce
-// indirect light; the stratification keeps the grid sparse in memory but reports the dense grid's
-// 40 B/cell; the screen rectangle of the box replaces the document's full-screen pass per splat.
+// `photon-splat` — photon splatting with orthographic bundles (seed 004, a thesis: ch. 3-4) on a GPU
+// pipeline. Passes per frame:
+//  1. inject (CPU, §3.2): photons from the emitters, stored at their first diffuse hit with a cosine
+//     direction (PhotonInjection); injection=rsm: the document's method B (shared RSM's VPLs).
+//  2. stratify (CPU, optional, §3.2.1/§4.2): 2x2x2 blocks with a cell under the threshold merge.
+//  3. bundles (CPU, §3.3, Fig. 4): a ray per photon to its hit, the step back, the volume
+//     (BundleVolume), the clusters of the scene that meet it (ClusterSet).
+//  4. depth-maps: one r x r tile of a depth atlas per bundle, one multi-draw per batch (depth.vert).
+//  5. hit-ranges + splat (§3.3/§4.3): each volume's back faces; per pixel the tolerant depth test,
+//     the filter weight, the Lambert splat, added with the weight in alpha (splat.vert/.frag).
+//  6. resolve (§3.4/§4.4): the flux estimate, or the document's normalisation; debug views.
+//  7. blur (§3.5): separable Gaussian.
+// Deviations, one line each (docs/techniques/photon-splat.md has the measurements):
+//  - default estimate=flux, calibrated; the document's normalized has no physical scale.
+//  - b = d by default (bundle from its photon) and D past the scene's box; b < d tilts the near plane.
+//  - no bundle ray starts behind its photon's surface; photons whose ray escapes keep their bundle.
+//  - the depth test uses the receiver's plane at the texel centre; maps in an atlas, culled clusters.
+//  - photons from emissive surfaces and textured area lights too; 16384 photons, blur 5 by default.
+// References: seed 004 (shared/seeds), spec shared/specs/photon-splatting-orthographic-bundles.md.
 #include "techniques/photon_splat/PhotonSplatTechnique.h"
 
 #include "core/Check.h"
@@ -43,17 +30,24 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace bounce {
 
 namespace {
 
 // Defaults tied to the scene's size, for settings given as 0 (the document leaves them to the artist).
-constexpr float kAutoMapSizeFraction = 0.1f;   // bundle width 2h = a tenth of the scene diagonal
-constexpr float kAutoStepBackFraction = 0.25f;  // b = h / 4: close to the hit, as Fig. 4 draws it
-constexpr float kAutoDepthFactor = 2.0f;        // D = b + 2 (2h): receivers up to twice the width past the hit
-constexpr float kAutoToleranceTexels = 2.0f;    // depth tolerance: two map texels of slope
+constexpr float kAutoMapSizeFraction = 0.05f;  // bundle width 2h = a twentieth of the scene diagonal (bias/noise, measured: docs)
+constexpr float kAutoToleranceTexels = 0.05f;  // depth tolerance past the receiver plane: 1/20 texel (float rounding, curvature)
+constexpr float kEmitterOffsetFraction = 1e-4f;  // emitter plane offset: 1e-4 of the scene diagonal (0.1 mm per metre)
+constexpr uint32_t kClusterTriangles = 64;     // triangles per culling cluster
+constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels (64 MB of DEPTH32F)
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
+constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first hits' depths +- 4 texels (slopes to tan 76 degrees over a half texel diagonal... and then some)
+constexpr int kDepthClipPlanes = 7;
+constexpr float kOverlapHeatMax = 64.0f;       // the overlap view's red: bundles per pixel (the defaults reach ~25 mean, ~80 at most)            // depth.vert's clip distances: tile (4), near, far, emitter
 
 template <size_t N>
 int indexOf(const std::array<std::string_view, N>& list, std::string_view s) {
@@ -72,24 +66,24 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("injection", m_injection, "rays: photons shot from the lights through the ray-casting service (the document's method A); rsm: the regular VPLs of a reflective shadow map (its method B for a GPU pipeline)", kInjections);
     v.field("rsmSize", m_rsmSize, "RSM resolution per side with injection=rsm (per cube face for point/area lights)", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer with injection=rsm (must divide rsmSize): vplGrid^2 photons per layer", 1, 256);
-    v.field("photons", m_photonCount, "photons shot from the lights per frame (document: 2,500-50,000)", 1, 1 << 20);
+    v.field("photons", m_photonCount, "photons shot from the emitters per frame (document: 2,500-50,000; default 16384: within bounds on every built-in scene, docs)", 1, 1 << 20);
     v.field("bounces", m_bounces, "diffuse hits at which photons are stored (1: single bounce, as implemented in the document)", 1, 8);
     v.field("seed", m_seed, "random seed of the photon paths", 0, 1 << 30);
     v.field("reseed", m_reseed, "new photon paths every frame (seed + frame): converges over frames, flickers; off = the same paths every frame");
     v.field("stratify", m_stratify, "3D stratification of the photons (document 3.2.1 / 4.2)");
     v.field("gridSize", m_gridSize, "stratification cells per side (even; document Fig. 9: 16)", 2, 256);
-    v.field("threshold", m_threshold, "a 2x2x2 block with a non-empty cell under this many photons is merged (document Fig. 3: 2)", 1, 1 << 20);
-    v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a tenth of the scene diagonal", 0.0f, 1.0e6f);
-    v.field("mapDepth", m_mapDepth, "bundle depth D, metres; 0 = b + 2 mapSize", 0.0f, 1.0e6f);
-    v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres; 0 = mapSize / 8", 0.0f, 1.0e6f);
+    v.field("threshold", m_threshold, "a 2x2x2 block with a cell (an empty one too, as 4.2 words the rule) under this many photons is merged (document Fig. 3: 2)", 1, 1 << 20);
+    v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a twentieth of the scene diagonal", 0.0f, 1.0e6f);
+    v.field("mapDepth", m_mapDepth, "bundle depth D past its near plane, metres; 0 = past the scene's bounding box", 0.0f, 1.0e6f);
+    v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres (the near plane then lies parallel to the hit surface); 0 = the hit distance d: the bundle starts at its photon", 0.0f, 1.0e6f);
     v.field("mapResolution", m_mapResolution, "texels per side of each bundle's depth map (document: 4 and 32 tested)", 4, 32);
-    v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver up to this far behind the stored depth is lit, metres; 0 = two texels", 0.0f, 1.0e6f);
+    v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver whose plane lies up to this far behind the stored depth at the texel's centre is lit, metres; 0 = 1/20 texel", 0.0f, 1.0e6f);
     v.field("filter", m_filter, "splat weight over the cross-section: gaussian (sigma = h/2), tent, box (document Fig. 6)", kFilters);
-    v.field("estimate", m_estimate, "normalized: sum(w S)/sum(w) times exposure (the document); flux: rho/pi sum Phi w cos V with a unit-integral kernel (bounce's calibrated estimator of one-bounce light)", kEstimates);
+    v.field("estimate", m_estimate, "flux: rho/pi sum Phi w_n cos V with a unit-integral kernel (bounce's calibrated estimator of one-bounce light, the default); normalized: sum(w S)/sum(w) times exposure (the document's, no physical scale)", kEstimates);
     v.field("exposure", m_exposure, "factor on the normalized indirect light (document 4.4)", 0.0f, 1.0e6f);
     v.field("ambient", m_ambient, "radiance (times albedo) of pixels no bundle reached, W/(m^2 sr) (document 3.4)", 0.0f, 1.0e6f);
-    v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5)", 0, 9);
-    v.field("debugView", m_debugView, "overlap: bundles per pixel (blue 0 to red 16); accumulation: before normalisation; grid: stratification cell of each pixel", kDebugViews);
+    v.field("blur", m_blur, "separable Gaussian blur of the indirect light: 0 (off), 3, 5, 7 or 9 pixels (document 3.5; default 5: fills the pixels no bundle reached, docs)", 0, 9);
+    v.field("debugView", m_debugView, "overlap: bundles per pixel (blue 0 to red 64); accumulation: before normalisation; grid: stratification cell of each pixel", kDebugViews);
 }
 
 Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
@@ -105,32 +99,48 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     const float diagonal = std::max(glm::length(m_hi - m_lo), 1e-3f);
     const float size = m_mapSize > 0.0f ? m_mapSize : kAutoMapSizeFraction * diagonal;
     m_half = 0.5f * size;
-    m_back = m_stepBack > 0.0f ? m_stepBack : kAutoStepBackFraction * m_half;
-    m_depth = m_mapDepth > 0.0f ? m_mapDepth : m_back + kAutoDepthFactor * size;
+    m_back = m_stepBack > 0.0f ? m_stepBack : std::numeric_limits<float>::infinity();  // 0: b = d, from the photon
+    m_depth = m_mapDepth;  // 0: to where the rays leave the scene's box
+    m_emitterOffset = kEmitterOffsetFraction * diagonal;
     const gl::GpuInfo& info = gl::Context::current()->info();
-    m_maxLayers = std::max(1, std::min(info.maxArrayLayers, 2048));
     const int r = m_mapResolution;
     // Bundles per frame at most: photons times stored bounces, or one per VPL of a cube RSM.
     const int capacity = std::max(1, m_injection == "rsm" ? 6 * m_vplGrid * m_vplGrid : m_photonCount * m_bounces);
-    BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "render/scene.vert"},
+    BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "techniques/photon_splat/depth.vert"},
                                                                          {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
     BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
                                                                    {GL_FRAGMENT_SHADER, "techniques/photon_splat/splat.frag"}}}));
+    BOUNCE_TRY(m_rangeProgram, gl::Program::build({"photon-splat.range", {{GL_COMPUTE_SHADER, "techniques/photon_splat/tile_range.comp"}}}));
     BOUNCE_TRY(m_resolve, gl::Program::build({"photon-splat.resolve", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                                        {GL_FRAGMENT_SHADER, "techniques/photon_splat/resolve.frag"}}}));
     BOUNCE_TRY(m_blurProgram, gl::Program::build({"photon-splat.blur", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                                         {GL_FRAGMENT_SHADER, "techniques/photon_splat/blur.frag"}}}));
+    // The depth atlas: one r x r tile per bundle, as many tiles as a frame's bundles (up to the side
+    // limit; more bundles take several batches).
+    const int maxTiles = std::max(1, std::min(info.maxTextureSize, kMaxAtlasTexels) / r);
+    m_tiles.x = std::min(maxTiles, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(capacity)))));
+    m_tiles.y = std::min(maxTiles, (capacity + m_tiles.x - 1) / m_tiles.x);
     gl::TextureDesc maps;
-    maps.target = GL_TEXTURE_2D_ARRAY;
     maps.format = GL_DEPTH_COMPONENT32F;
-    maps.width = maps.height = r;
-    maps.depth = std::min(m_maxLayers, capacity);
+    maps.width = m_tiles.x * r;
+    maps.height = m_tiles.y * r;
     maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
-    m_maps = gl::Texture::create("photon-splat.depthMaps", maps);
+    m_maps = gl::Texture::create("photon-splat.depthAtlas", maps);
+    m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
+    m_mapFbo.attach(GL_DEPTH_ATTACHMENT, m_maps);
+    m_mapFbo.setDrawBuffers(0);
+    BOUNCE_CHECK(m_mapFbo.complete(), "photon-splat depth atlas framebuffer");
+    // The scene's triangles in clusters, drawn per bundle by one multi-draw per batch.
+    m_clusters = photonsplat::ClusterSet::build(ctx.scene, kClusterTriangles);
+    const std::vector<uint32_t>& indices = m_clusters.indices();
+    m_clusterIndices = gl::Buffer::create("photon-splat.clusterIndices", std::max<size_t>(indices.size(), 1) * sizeof(uint32_t),
+                                          indices.empty() ? nullptr : indices.data(), 0);
+    m_drawCapacity = 0;
+    m_depthVao = gl::VertexArray::create("photon-splat.depthVao");
+    glVertexArrayElementBuffer(m_depthVao.id(), m_clusterIndices.id());
     m_accum = gl::Texture::create2D("photon-splat.accumulation", ctx.size.x, ctx.size.y, GL_RGBA32F);
     m_stats = gl::Texture::create2D("photon-splat.overlap", ctx.size.x, ctx.size.y, GL_RGBA32F);
     m_blurTemp = gl::Texture::create2D("photon-splat.blur", ctx.size.x, ctx.size.y, GL_RGBA32F);
-    m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
     m_accumFbo = gl::Framebuffer::create("photon-splat.accumFbo");
     m_accumFbo.attach(GL_COLOR_ATTACHMENT0, m_accum);
     m_accumFbo.attach(GL_COLOR_ATTACHMENT1, m_stats);
@@ -138,6 +148,7 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_CHECK(m_accumFbo.complete(), "photon-splat accumulation framebuffer");
     m_outFbo = gl::Framebuffer::create("photon-splat.outFbo");
     m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(capacity) * sizeof(gpu::BundleGpu));
+    m_ranges = gl::Buffer::create("photon-splat.hitRanges", static_cast<size_t>(capacity) * sizeof(glm::vec2));
     gl::TextureDesc points;
     points.target = GL_TEXTURE_2D_ARRAY;
     points.format = GL_RGBA32F;
@@ -145,19 +156,23 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     points.height = (capacity + points.width - 1) / points.width;
     points.minFilter = points.magFilter = GL_NEAREST;
     m_bundlePoints = gl::Texture::create("photon-splat.bundlePoints", points);
+    const std::vector<glm::vec4> empty(static_cast<size_t>(points.width) * static_cast<size_t>(points.height), glm::vec4(0.0f));
+    glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, points.width, points.height, 1, GL_RGBA, GL_FLOAT, empty.data());
+    m_pointsWritten = 0;
     m_caster.reset();
     m_casterTime = -1.0f;
     return {};
 }
 
 void PhotonSplatTechnique::updateGeometry(FrameContext& ctx) {
-    // The ray-casting scene at this frame's time; static scenes build it once.
+    // The ray-casting scene and the clusters' bounds at this frame's time; static scenes build them once.
     if (!m_caster || (ctx.sceneGpu.hasDynamicObjects() && m_casterTime != ctx.time)) {
         auto caster = RayCaster::create(ctx.scene, ctx.time, GeometryFilter::All);
         BOUNCE_CHECK(caster.ok(), "photon-splat: ray-casting scene");
         m_caster.emplace(std::move(*caster));
         m_casterTime = ctx.time;
     }
+    m_clusters.update(ctx.scene, ctx.time);
 }
 
 std::vector<photonsplat::Photon> PhotonSplatTechnique::rsmPhotons(FrameContext& ctx, uint64_t seed) {
@@ -189,10 +204,11 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         inj.seed = static_cast<uint64_t>(m_seed) + (m_reseed ? ctx.frame : 0u);
         if (m_fixedPhotons) m_photonList = *m_fixedPhotons;
         else if (m_injection == "rsm") m_photonList = rsmPhotons(ctx, inj.seed);
-        else m_photonList = photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj);
+        else photonsplat::injectPhotons(ctx.scene, ctx.time, *m_caster, inj, m_photonList);
         ctx.counters["injectMs"] = msSince(t0);
         ctx.counters["photonsStored"] = static_cast<double>(m_photonList.size());
-        ctx.counters["photonBytes"] = static_cast<double>(m_photonList.size() * photonsplat::kThesisPhotonBytes);
+        // What the photons take where they are held: the list's allocation (48 B per Photon).
+        ctx.counters["photonBytes"] = static_cast<double>(m_photonList.capacity() * sizeof(photonsplat::Photon));
         if (m_stratify) {
             const auto t1 = std::chrono::steady_clock::now();
             photonsplat::StratifyStats st;
@@ -205,63 +221,140 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         const auto t2 = std::chrono::steady_clock::now();
         photonsplat::BundleSettings bs;
         bs.stepBack = m_back;
-        m_bundles = photonsplat::placeBundles(m_photonList, *m_caster, bs);
+        ctx.scene.bounds(ctx.time, bs.lo, bs.hi);  // rays that hit nothing still get a bundle
+        photonsplat::placeBundles(m_photonList, *m_caster, bs, m_bundles, m_bundleScratch);
         ctx.counters["bundleMs"] = msSince(t2);
         ctx.counters["bundles"] = static_cast<double>(m_bundles.size());
     }
     const int count = static_cast<int>(std::min<size_t>(m_bundles.size(), m_bundleBuffer.size() / sizeof(gpu::BundleGpu)));
-    std::vector<gpu::BundleGpu> gpuBundles(static_cast<size_t>(count));
+    m_volumes.resize(static_cast<size_t>(count));
+    photonsplat::VolumeSettings volumeSettings;
+    volumeSettings.half = m_half;
+    volumeSettings.stepBack = m_back;
+    volumeSettings.length = m_depth;
+    volumeSettings.emitterOffset = m_emitterOffset;
+    if (m_depth <= 0.0f) ctx.scene.bounds(ctx.time, volumeSettings.lo, volumeSettings.hi);
+    std::vector<gpu::BundleGpu>& gpuBundles = m_gpuBundles;  // kept across frames: no per-frame megabytes
+    gpuBundles.resize(static_cast<size_t>(count));
     for (int i = 0; i < count; ++i) {
         const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
-        gpuBundles[static_cast<size_t>(i)] = gpu::BundleGpu{glm::vec4(b.origin, m_half), glm::vec4(b.direction, m_depth),
-                                                            glm::vec4(b.right, std::min(m_back, 0.5f * b.hitDistance)), glm::vec4(b.up, 0.0f),
-                                                            glm::vec4(b.power, 0.0f)};
+        const photonsplat::BundleVolume v = photonsplat::bundleVolume(m_photonList[b.photon], b, volumeSettings);
+        m_volumes[static_cast<size_t>(i)] = v;
+        const bool emitter = std::isfinite(v.emitterOffset);
+        gpuBundles[static_cast<size_t>(i)] = gpu::BundleGpu{glm::vec4(v.origin, v.half), glm::vec4(v.direction, v.length),
+                                                            glm::vec4(v.right, v.zNear), glm::vec4(v.up, v.zFar),
+                                                            glm::vec4(v.nearNormal, v.nearOffset),
+                                                            glm::vec4(v.emitterNormal, emitter ? v.emitterOffset : -1e30f), glm::vec4(b.power, 0.0f)};
     }
     if (count > 0) m_bundleBuffer.upload(0, gpuBundles.size() * sizeof(gpu::BundleGpu), gpuBundles.data());
     {
-        // The debug view's points, rewritten whole so that texels of an earlier, larger frame read as empty.
+        // The debug view's points: this frame's hit points, and zeros over what an earlier, larger
+        // frame wrote.
         const gl::TextureDesc& d = m_bundlePoints.desc();
-        std::vector<glm::vec4> hits(static_cast<size_t>(d.width) * static_cast<size_t>(d.height), glm::vec4(0.0f));
+        const int written = std::min(std::max(count, m_pointsWritten), d.width * d.height);
+        const int rows = (written + d.width - 1) / d.width;
+        std::vector<glm::vec4>& hits = m_pointScratch;
+        hits.assign(static_cast<size_t>(rows) * static_cast<size_t>(d.width), glm::vec4(0.0f));
         for (int i = 0; i < count && i < static_cast<int>(hits.size()); ++i) {
             const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(i)];
-            hits[static_cast<size_t>(i)] = glm::vec4(b.origin + std::min(m_back, 0.5f * b.hitDistance) * b.direction, 1.0f);
+            hits[static_cast<size_t>(i)] = glm::vec4(m_photonList[b.photon].position + b.hitDistance * b.direction, 1.0f);
         }
-        glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, d.width, d.height, 1, GL_RGBA, GL_FLOAT, hits.data());
+        if (rows > 0) glTextureSubImage3D(m_bundlePoints.id(), 0, 0, 0, 0, d.width, rows, 1, GL_RGBA, GL_FLOAT, hits.data());
+        m_pointsWritten = count;
     }
 
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 1, zero);
     const float tolerance = m_depthTolerance > 0.0f ? m_depthTolerance : kAutoToleranceTexels * 2.0f * m_half / static_cast<float>(m_mapResolution);
-    const int layers = m_maps.desc().depth;
+    const int tiles = m_tiles.x * m_tiles.y;
     int batches = 0;
-    for (int first = 0; first < count; first += layers, ++batches) {
-        const int n = std::min(layers, count - first);
+    double clusterDraws = 0.0, cullMs = 0.0;
+    std::vector<uint32_t>& kept = m_cull.kept;
+    std::vector<uint32_t>& perCluster = m_cull.perCluster;
+    std::vector<glm::uvec2>& pairs = m_cull.pairs;  // (cluster, bundle)
+    std::vector<DrawCommand>& commands = m_cull.commands;
+    std::vector<glm::uvec2>& drawData = m_cull.drawData;
+    for (int first = 0; first < count; first += tiles, ++batches) {
+        const int n = std::min(tiles, count - first);
         {
             auto s = ctx.timers.scope("depth-maps");
-            const float one = 1.0f;
-            glClearTexImage(m_maps.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
-            m_depthProgram.use();
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_LESS);
-            glDisable(GL_CULL_FACE);  // back faces occlude too: the frustum may start inside geometry (4.3)
-            glDisable(GL_BLEND);
-            glDisable(GL_STENCIL_TEST);
+            // Cull: per bundle, the clusters whose box meets its volume (CPU); then one instanced
+            // indirect command per cluster, its instances the bundles that keep it (grouped by a
+            // counting sort, so that baseInstance + gl_InstanceID reads them).
+            const auto t0 = std::chrono::steady_clock::now();
+            pairs.clear();
             for (int i = 0; i < n; ++i) {
-                const photonsplat::Bundle& b = m_bundles[static_cast<size_t>(first + i)];
-                m_mapFbo.attachLayer(GL_DEPTH_ATTACHMENT, m_maps, i);
-                m_mapFbo.setDrawBuffers(0);
-                m_mapFbo.bind();
-                render::View view;
-                view.viewFromWorld = glm::lookAt(b.origin, b.origin + b.direction, b.up);
-                view.clipFromView = glm::ortho(-m_half, m_half, -m_half, m_half, 0.0f, m_depth);
-                view.eye = b.origin;
-                view.nearPlane = 0.0f;
-                view.farPlane = m_depth;
-                view.viewport = {m_mapResolution, m_mapResolution};
-                ctx.drawer.draw(view);
+                kept.clear();
+                m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
+                for (uint32_t c : kept) pairs.push_back({c, static_cast<uint32_t>(first + i)});
             }
-            glDisable(GL_DEPTH_TEST);
+            perCluster.assign(m_clusters.clusters().size() + 1, 0u);
+            for (const glm::uvec2& pr : pairs) ++perCluster[pr.x + 1];
+            std::partial_sum(perCluster.begin(), perCluster.end(), perCluster.begin());
+            commands.clear();
+            for (size_t c = 0; c + 1 < perCluster.size(); ++c)
+                if (perCluster[c + 1] > perCluster[c]) {
+                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
+                    commands.push_back({cl.indexCount, perCluster[c + 1] - perCluster[c], cl.firstIndex, 0, perCluster[c]});
+                }
+            drawData.resize(pairs.size());
+            for (const glm::uvec2& pr : pairs) drawData[perCluster[pr.x]++] = {pr.y, m_clusters.clusters()[pr.x].object};
+            clusterDraws += static_cast<double>(pairs.size());
+            cullMs += msSince(t0);
+            if (std::max(commands.size(), drawData.size()) > m_drawCapacity) {
+                m_drawCapacity = std::max(std::max(commands.size(), drawData.size()), 2 * m_drawCapacity);
+                m_drawCommands = gl::Buffer::create("photon-splat.drawCommands", m_drawCapacity * sizeof(DrawCommand));
+                m_drawData = gl::Buffer::create("photon-splat.drawData", m_drawCapacity * sizeof(glm::uvec2));
+                glVertexArrayVertexBuffer(m_depthVao.id(), 0, m_drawData.id(), 0, sizeof(glm::uvec2));
+                glVertexArrayBindingDivisor(m_depthVao.id(), 0, 1);
+                glEnableVertexArrayAttrib(m_depthVao.id(), 0);
+                glVertexArrayAttribIFormat(m_depthVao.id(), 0, 2, GL_UNSIGNED_INT, 0);
+                glVertexArrayAttribBinding(m_depthVao.id(), 0, 0);
+            }
+            if (!commands.empty()) {
+                m_drawCommands.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
+                m_drawData.upload(0, drawData.size() * sizeof(glm::uvec2), drawData.data());
+            }
+            m_mapFbo.bind();
+            glViewport(0, 0, m_maps.width(), m_maps.height());
+            const float one = 1.0f;
+            glDepthMask(GL_TRUE);  // the clear obeys the depth write mask an earlier pass may have left off
+            glClearNamedFramebufferfv(m_mapFbo.id(), GL_DEPTH, 0, &one);
+            if (!commands.empty()) {
+                m_depthProgram.use();
+                m_depthProgram.set("u_first", first);
+                m_depthProgram.set("u_tiles", m_tiles);
+                m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+                ctx.sceneGpu.vertices().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+                ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
+                glEnable(GL_DEPTH_TEST);
+                glDepthFunc(GL_LESS);
+                glDisable(GL_CULL_FACE);  // back faces occlude too: the volume may start inside geometry (4.3)
+                glDisable(GL_BLEND);
+                glDisable(GL_STENCIL_TEST);
+                for (int k = 0; k < kDepthClipPlanes; ++k) glEnable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+                m_depthVao.bind();
+                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_drawCommands.id());
+                glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
+                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+                for (int k = 0; k < kDepthClipPlanes; ++k) glDisable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+                glDisable(GL_DEPTH_TEST);
+            }
+        }
+        const bool useRanges = m_estimate == "flux";
+        if (useRanges) {
+            // The depths of each bundle's first hits, for the splat's cut volume.
+            auto s = ctx.timers.scope("hit-ranges");
+            m_maps.bind(BINDING_TEX_TECH0);
+            m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+            m_ranges.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+            m_rangeProgram.set("u_first", first);
+            m_rangeProgram.set("u_tiles", m_tiles);
+            m_rangeProgram.set("u_resolution", m_mapResolution);
+            m_rangeProgram.use();
+            glDispatchCompute(static_cast<GLuint>(n), 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // splat.vert reads the ranges
         }
         {
             auto s = ctx.timers.scope("splat");
@@ -270,23 +363,39 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             glEnable(GL_BLEND);
             glBlendEquation(GL_FUNC_ADD);
             glBlendFunc(GL_ONE, GL_ONE);
+            glEnable(GL_CULL_FACE);  // the volume's back faces: each covered pixel once (splat.vert)
+            glCullFace(GL_FRONT);
             ctx.gbuffer.bind();
             m_maps.bind(BINDING_TEX_TECH0);
             m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
             m_splat.set("u_first", first);
+            m_splat.set("u_tiles", m_tiles);
+            m_splat.set("u_resolution", m_mapResolution);
             m_splat.set("u_filter", indexOf(kFilters, m_filter) == 0 ? SPLAT_FILTER_GAUSSIAN
                                     : indexOf(kFilters, m_filter) == 1 ? SPLAT_FILTER_TENT : SPLAT_FILTER_BOX);
             m_splat.set("u_estimate", m_estimate == "flux" ? SPLAT_ESTIMATE_FLUX : SPLAT_ESTIMATE_NORMALIZED);
             m_splat.set("u_tolerance", tolerance);
+            m_splat.set("u_useRanges", useRanges);
+            // A receiver may lie beyond its texel's hit depth by its slope over half a texel: the
+            // margin covers slopes up to kRangeMarginTexels (tan 76 degrees), plus the tolerance.
+            m_splat.set("u_rangeMargin", kRangeMarginTexels * 2.0f * m_half / static_cast<float>(m_mapResolution) + tolerance);
+            m_ranges.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
             m_splat.use();
             gl::Context::current()->bindEmptyVertexArray();
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 6, n);
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, n);
+            glCullFace(GL_BACK);
+            glDisable(GL_CULL_FACE);
             glDisable(GL_BLEND);
         }
     }
     ctx.counters["depthMapBatches"] = static_cast<double>(batches);
     ctx.counters["depthMapTexels"] = static_cast<double>(count) * m_mapResolution * m_mapResolution;
+    ctx.counters["clusterDraws"] = clusterDraws;
+    ctx.counters["cullMs"] = cullMs;
     ctx.counters["bundleHalfSize"] = m_half;
+    ctx.counters["bundleBufferBytes"] = static_cast<double>(m_bundleBuffer.size());
+    ctx.counters["depthAtlasBytes"] = static_cast<double>(gl::textureStorageBytes(m_maps.desc()));
+    ctx.counters["clusterBytes"] = static_cast<double>(m_clusters.bytes() + m_clusterIndices.size());
     {
         auto s = ctx.timers.scope("resolve");
         const gl::Texture& target = m_blur > 0 && m_debugView == "none" ? m_blurTemp : indirect;
@@ -302,7 +411,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         m_resolve.set("u_exposure", m_exposure);
         m_resolve.set("u_ambient", glm::vec3(m_ambient));
         m_resolve.set("u_view", indexOf(kDebugViews, m_debugView));
-        m_resolve.set("u_heatMax", 16.0f);
+        m_resolve.set("u_heatMax", kOverlapHeatMax);
         m_resolve.set("u_gridLo", m_lo);
         m_resolve.set("u_gridHi", m_hi);
         m_resolve.set("u_gridSize", m_gridSize);
@@ -324,6 +433,23 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
     }
+}
+
+void PhotonSplatTechnique::collectCounters(Counters& out) {
+    if (!m_stats) return;
+    std::vector<float>& counts = m_overlapScratch;
+    counts.resize(static_cast<size_t>(m_stats.width()) * static_cast<size_t>(m_stats.height()));
+    glGetTextureImage(m_stats.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(counts.size() * sizeof(float)), counts.data());
+    double sum = 0.0, most = 0.0, pixels = 0.0;
+    for (float c : counts)
+        if (c > 0.0f) {
+            sum += c;
+            most = std::max(most, static_cast<double>(c));
+            pixels += 1.0;
+        }
+    out["overlapMean"] = pixels > 0.0 ? sum / pixels : 0.0;
+    out["overlapMax"] = most;
+    out["overlapPixels"] = pixels;
 }
 
 std::string_view PhotonSplatTechnique::frameReadbackReason() const {

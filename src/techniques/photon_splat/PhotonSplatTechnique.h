@@ -3,7 +3,9 @@
 // for the passes and docs/techniques/photon-splat.md for settings and deviations.
 #include "techniques/Technique.h"
 #include "techniques/nichols/RegularVpls.h"
+#include "techniques/photon_splat/BundleVolume.h"
 #include "techniques/photon_splat/PhotonInjection.h"
+#include "techniques/photon_splat/splat_shared.h"
 
 #include <array>
 #include <memory>
@@ -20,9 +22,13 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     std::string_view frameReadbackReason() const override;
+    // M6: bundles per pixel (the overlap texture, read after the frame): mean and largest over the
+    // pixels some bundle reached, and how many pixels that is.
+    void collectCounters(Counters& out) override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
-        // Where each bundle of the frame is centred: its photon's hit point (5-pixel dots).
+        // Where each bundle of the frame is centred: its photon's hit point, or where a photon's escaping
+        // ray leaves the scene's box (5-pixel dots).
         if (m_bundlePoints) out.push_back({"photon-splat.bundles", &m_bundlePoints, DebugEncoding::Points, 5.0f});
         for (size_t i = 1; i < kDebugViews.size(); ++i)
             out.push_back({"photon-splat." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
@@ -30,13 +36,16 @@ public:
     }
 
     static constexpr std::array<std::string_view, 3> kFilters{"gaussian", "tent", "box"};
-    static constexpr std::array<std::string_view, 2> kEstimates{"normalized", "flux"};
+    static constexpr std::array<std::string_view, 2> kEstimates{"flux", "normalized"};
     static constexpr std::array<std::string_view, 4> kDebugViews{"none", "overlap", "accumulation", "grid"};
     static constexpr std::array<std::string_view, 2> kInjections{"rays", "rsm"};
 
     // For tests: the photons and bundles of the last frame.
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
     const std::vector<photonsplat::Bundle>& bundles() const { return m_bundles; }
+    // For tests: the GL storage the byte counters describe.
+    const gl::Buffer& bundleBuffer() const { return m_bundleBuffer; }
+    const gl::Texture& depthAtlas() const { return m_maps; }
     // Tests: use these photons every frame instead of shooting them (stratification still applies).
     void setFixedPhotons(std::vector<photonsplat::Photon> photons) { m_fixedPhotons = std::move(photons); }
 
@@ -49,7 +58,7 @@ private:
     std::string m_injection{"rays"};
     int m_rsmSize = 256;
     int m_vplGrid = 32;
-    int m_photonCount = 1024;
+    int m_photonCount = 16384;
     int m_bounces = 1;
     int m_seed = 0;
     bool m_reseed = false;
@@ -62,15 +71,16 @@ private:
     int m_mapResolution = 8;
     float m_depthTolerance = 0.0f;
     std::string m_filter{"gaussian"};
-    std::string m_estimate{"normalized"};
+    std::string m_estimate{"flux"};
     float m_exposure = 1.0f;
     float m_ambient = 0.0f;
-    int m_blur = 0;
+    int m_blur = 5;
     std::string m_debugView{"none"};
 
     float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f;  // bundle half width h, depth D, step back b (metres)
+    float m_emitterOffset = 0.0f;                         // metres
     glm::vec3 m_lo{0.0f}, m_hi{0.0f};
-    int m_maxLayers = 256;
+    glm::ivec2 m_tiles{1};  // depth atlas tiles per row, rows
     std::optional<RayCaster> m_caster;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
     std::optional<nichols::RegularVpls> m_vpls;
@@ -78,13 +88,36 @@ private:
     std::vector<photonsplat::Photon> m_photonList;
     std::optional<std::vector<photonsplat::Photon>> m_fixedPhotons;
     std::vector<photonsplat::Bundle> m_bundles;
+    std::vector<photonsplat::BundleVolume> m_volumes;
+    // Per-frame CPU work space, kept across frames (the soak test holds the process's memory flat).
+    struct DrawCommand {  // DrawElementsIndirectCommand
+        GLuint count, instanceCount, firstIndex;
+        GLint baseVertex;
+        GLuint baseInstance;
+    };
+    struct CullScratch {
+        std::vector<uint32_t> kept, perCluster;
+        std::vector<glm::uvec2> pairs;     // (cluster, bundle)
+        std::vector<DrawCommand> commands;
+        std::vector<glm::uvec2> drawData;  // (bundle, object) per instance
+    } m_cull;
+    photonsplat::BundleScratch m_bundleScratch;
+    std::vector<gpu::BundleGpu> m_gpuBundles;
+    std::vector<glm::vec4> m_pointScratch;
+    std::vector<float> m_overlapScratch;
+    photonsplat::ClusterSet m_clusters;
+    gl::Buffer m_clusterIndices, m_drawCommands, m_drawData;
+    size_t m_drawCapacity = 0;  // commands the two draw buffers hold
+    gl::VertexArray m_depthVao;
+    int m_pointsWritten = 0;    // texels of m_bundlePoints the last frame wrote
     gl::Buffer m_bundleBuffer;
+    gl::Buffer m_ranges;  // per bundle: the depth range of its first hits (tile_range.comp)
     gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
     // The viewer's "photon-splat.bundles": RGBA32F 2D array (one layer), texel i = bundle i's hit point
     // (xyz, w = 1), w = 0 past the frame's bundles.
     gl::Texture m_bundlePoints;
     gl::Framebuffer m_mapFbo, m_accumFbo, m_outFbo;
-    gl::Program m_depthProgram, m_splat, m_resolve, m_blurProgram;
+    gl::Program m_depthProgram, m_rangeProgram, m_splat, m_resolve, m_blurProgram;
 };
 
 }  // namespace bounce
