@@ -47,7 +47,9 @@ TEST_F(PhotonSplatGpuTest, OnePhotonSplatsItsFootprint) {
         ASSERT_EQ(splatOf(*p).bundles().size(), 1u);
         // M6's overlap counters: one bundle over its 1 m square, 32 x 32 pixels of 3.125 cm.
         EXPECT_EQ(counters.at("overlapMax"), 1.0) << filter;
-        if (std::string(filter) == "box") EXPECT_EQ(counters.at("overlapPixels"), 1024.0);
+        if (std::string(filter) == "box") {
+            EXPECT_EQ(counters.at("overlapPixels"), 1024.0);
+        }
         const Image img = p->readback(Component::Indirect);
         // rho / pi * Phi * w_n integrates over the plane to rho Phi / pi (the kernel has unit
         // integral; the beam meets the plane head on). Measured 1.0000 (box, tent), 1.0003
@@ -169,10 +171,10 @@ TEST_F(PhotonSplatGpuTest, BundlesDepositTheirWholeFluxAcrossEdges) {
             for (int b = 0; b < kRays; ++b) {
                 const float u = -1.0f + (a + 0.5f) * 2.0f / kRays, v = -1.0f + (b + 0.5f) * 2.0f / kRays;
                 const double weight = std::exp(-2.0 * (u * u + v * v));  // Gaussian, sigma = h/2
-                const glm::vec3 o = ph.position + kHalf * (u * right + v * up);
+                const glm::vec3 start = ph.position + kHalf * (u * right + v * up);
                 all += weight;
-                const glm::vec3 atTable = o + ph.direction * ((kTableHeight - o.y) / ph.direction.y);
-                const glm::vec3 atPlane = o + ph.direction * (-o.y / ph.direction.y);
+                const glm::vec3 atTable = start + ph.direction * ((kTableHeight - start.y) / ph.direction.y);
+                const glm::vec3 atPlane = start + ph.direction * (-start.y / ph.direction.y);
                 const bool onTable = std::abs(atTable.x) <= kTable && std::abs(atTable.z) <= kTable;
                 const bool underTable = std::abs(atPlane.x) <= kTable && std::abs(atPlane.z) <= kTable;  // hidden from above
                 const bool onPlane = std::abs(atPlane.x) <= gputest::kPlaneHalf && std::abs(atPlane.z) <= gputest::kPlaneHalf;

@@ -17,7 +17,6 @@ namespace bounce {
 class PhotonSplatTechnique final : public Technique {
 public:
     std::string_view name() const override { return "photon-splat"; }
-    bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
