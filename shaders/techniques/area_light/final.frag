@@ -7,6 +7,7 @@
 // Output: direct radiance W/(m^2 sr).
 #include "common/gbuffer.glsl"
 #include "common/frame.glsl"
+#include "common/constants.glsl"
 #include "techniques/area_light/area_common.glsl"
 layout(binding = BINDING_TEX_TECH0) uniform sampler2DArray s_diffuse;
 layout(binding = BINDING_TEX_TECH1) uniform sampler2DArray s_specular;
@@ -19,7 +20,7 @@ void main() {
     vec3 radiance = s.covered ? s.emission : vec3(0.0);
     if (s.covered && !culledByAllLights(s.position, s.normal)) {
         vec3 e = texelFetch(s_diffuse, ivec3(p, 0), 0).rgb;
-        radiance += (1.0 - s.metallic) * s.albedo * (1.0 / 3.14159265358979) * e;
+        radiance += (1.0 - s.metallic) * s.albedo * kInvPi * e;
         if (u_hasSpecular) {
             vec3 f0 = mix(vec3(s.specularF0), s.albedo, s.metallic);
             float nDotV = max(dot(s.normal, normalize(u_frame.eyePosition.xyz - s.position)), 0.0);

@@ -52,6 +52,7 @@
 #include "gpu/ShaderLimits.h"
 
 #include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -454,7 +455,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             m_discontinuity.set("u_level", k);
             m_discontinuity.set("u_levelOrigin", origin);
             m_discontinuity.set("u_size", size);
-            m_discontinuity.set("u_scale", specular ? 1.0f / peak : 1.0f / (3.14159265f * peak));
+            m_discontinuity.set("u_scale", specular ? 1.0f / peak : 1.0f / (glm::pi<float>() * peak));
             m_discontinuity.use();
             glDispatchCompute(groups(size.x), groups(size.y), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
