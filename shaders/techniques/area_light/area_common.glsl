@@ -53,3 +53,20 @@ vec3 rayEnd(AreaLightGpu L, vec3 y, vec3 x) {
     float side = dot(x - y, L.normal.xyz) >= 0.0 ? 1.0 : -1.0;
     return y + side * u_pass.march.z * L.normal.xyz;
 }
+
+// 2x2 interleaved sampling (§5.3.3.2): the cell of parity s = (x & 1) + 2 (y & 1) at its level takes
+// VPLs s, s + 4, s + 8, ...; one subset (interleave off) has parity 0 everywhere.
+int alParity(ivec2 c, int subsets) { return subsets == 4 ? (c.x & 1) + 2 * (c.y & 1) : 0; }
+
+// The "3x3 region" of §5.3.3.2 (reuse when "coarse samples in a 3x3 region agree"; the bit count over
+// "a neighborhood") for one VPL subset: its samples lie on a lattice of spacing 2, so its 3x3 region
+// around cell c is the subset's cells within 2 cells of c: 3 x 3 of them where c has that parity,
+// 3 x 2 or 2 x 2 where c falls between them; without interleaving, the plain 3x3 block. The 3x3 block
+// of cells holds only c itself of c's own parity, so an agreement over it was vacuous for a quarter
+// of the children and a bit count over it never saw c's own subset (AreaLightGpuTest
+// .IncrementalVisibilityFollowsTheThesissRules). Loop over the offsets in [-r, r]^2 and keep the
+// cells of the subset's parity.
+int alWindowRadius(int subsets) { return subsets == 4 ? 2 : 1; }
+
+// A subset's cells of a region must number at least this many before they can agree or disagree.
+const int AL_MIN_REGION_SAMPLES = 2;

@@ -21,8 +21,9 @@ namespace bounce::gpu {
 #define AL_STAT_RAYS_REUSED 1
 #define AL_STAT_RAYS_CULLED 2   // VPLs facing away from the receiver or the receiver behind them: no ray
 #define AL_STAT_LOBE_SAMPLED 3  // specular cells that used the 5x5 lobe-centred texture samples
-#define AL_STAT_PARTIAL_VPLS 4  // sum over tree cells of VPLs whose bits disagree in the 3x3 neighbourhood
+#define AL_STAT_PARTIAL_VPLS 4  // sum over tree cells of VPLs whose bits disagree in their subset's 3x3 region
 #define AL_STAT_TREE_CELLS 5    // cells that computed that sum
+#define AL_STAT_EXAMINED_VPLS 6 // sum over tree cells of the VPLs whose subset has two or more cells in the region
 #define AL_STAT_COUNT 8
 
 struct AreaLightGpu {

@@ -7,9 +7,11 @@
 // parity s = (x & 1) + 2 (y & 1) at its level takes VPLs s, s + 4, s + 8, ... and writes their sum;
 // resolve.comp adds the four subsets of a neighbourhood. Visibility per VPL is a bit of the cell's
 // bitstream (one bit per VPL of its subset, 128 per layer of an RGBA32UI atlas array): at the coarsest
-// level every VPL is ray-marched; at finer levels a VPL's bit is reused when the parent level's cells
-// of the same parity in the 3x3 block around the parent agree on it, and re-cast only where they
-// disagree. A VPL the receiver faces away from, or that emits away from it, is not traced (bit 0).
+// level every VPL is ray-marched; at finer levels a VPL's bit is reused when the parent level's tree
+// cells of the subset's 3x3 region around the parent (area_common.glsl alWindowRadius: the subset's
+// cells within two cells, 4 to 9 of them) agree on it, and re-cast where they disagree or fewer than
+// two of them have bits. A VPL the receiver faces away from, or that emits away from it, is not traced
+// (bit 0).
 // One draw handles the 128 VPLs of bitstream layer u_batch (so any VPL count stays within the shader
 // loop budget, gpu/ShaderLimits.h); the host adds the draws (blending).
 // visibility=shadow-maps replaces the march by a lookup in the VPL's paraboloid shadow map (the
@@ -40,8 +42,6 @@ uniform int u_batch;
 uniform bool u_shade;
 layout(location = 0) out vec4 o_irradiance;
 
-int parity(ivec2 c, int subsets) { return subsets == 4 ? (c.x & 1) + 2 * (c.y & 1) : 0; }
-
 void main() {
     ivec2 cell = ivec2(gl_FragCoord.xy) - u_levelOrigin;
     vec4 g = texelFetch(s_geometry, ivec3(cell, 0), u_level);
@@ -49,21 +49,22 @@ void main() {
     vec3 n = normalize(texelFetch(s_normal, ivec3(cell, 0), u_level).xyz + vec3(0.0, 0.0, 1e-12));
     int subsets = int(u_pass.counts.w);
     int perCell = int(u_pass.counts.z);
-    int s = parity(cell, subsets);
+    int s = alParity(cell, subsets);
     int visibility = int(u_pass.march.w);
     int first = SV_BITS_PER_LAYER * u_batch, end = min(perCell, first + SV_BITS_PER_LAYER);
 
-    // The parent level's verdicts on this layer's VPLs: AND and OR over the same-parity tree cells of
-    // the 3x3 block around the parent.
+    // The parent level's verdicts on this layer's VPLs: AND and OR over the tree cells of this
+    // subset's 3x3 region around the parent.
     uvec4 anyVisible = uvec4(0u), allVisible = uvec4(0xFFFFFFFFu);
     int samples = 0;
     if (visibility == AL_VIS_INCREMENTAL && u_level < u_coarsest) {
         ivec2 p = min(cell / 2, u_parentSize - 1);
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
+        int r = alWindowRadius(subsets);
+        for (int dy = -r; dy <= r; ++dy)
+            for (int dx = -r; dx <= r; ++dx) {
                 ivec2 q = p + ivec2(dx, dy);
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_parentSize))) continue;
-                if (parity(q, subsets) != s) continue;
+                if (alParity(q, subsets) != s) continue;
                 if ((texelFetch(s_flags, u_parentOrigin + q, 0).r & AL_CELL_TREE) == 0u) continue;
                 uvec4 b = imageLoad(i_bits, ivec3(u_parentOrigin + q, u_batch));
                 anyVisible |= b;
@@ -71,7 +72,7 @@ void main() {
                 ++samples;
             }
     }
-    uvec4 agree = samples > 0 ? ~(anyVisible ^ allVisible) : uvec4(0u);
+    uvec4 agree = samples >= AL_MIN_REGION_SAMPLES ? ~(anyVisible ^ allVisible) : uvec4(0u);
 
     // Origin bias against self-occlusion ("shadow acne", Fig. 5.12): u_pass.march.z metres along the
     // normal, and the same distance off the emitter at the VPL's end (rayEnd).

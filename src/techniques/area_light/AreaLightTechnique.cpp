@@ -536,8 +536,12 @@ void AreaLightTechnique::collectCounters(Counters& c) {
     c["raysReused"] = stats[AL_STAT_RAYS_REUSED];
     c["raysCulled"] = stats[AL_STAT_RAYS_CULLED];
     c["lobeSampledCells"] = stats[AL_STAT_LOBE_SAMPLED];
+    // Partially visible VPLs over the VPLs examined (those whose subset had two or more tree cells in
+    // the region; every VPL of an interior cell), summed over the tree cells of every level.
+    c["partiallyVisibleVpls"] = stats[AL_STAT_PARTIAL_VPLS];
+    c["examinedVpls"] = stats[AL_STAT_EXAMINED_VPLS];
     c["partiallyVisibleFraction"] =
-        stats[AL_STAT_TREE_CELLS] > 0 ? double(stats[AL_STAT_PARTIAL_VPLS]) / (double(stats[AL_STAT_TREE_CELLS]) * m_vplCount) : 0.0;
+        stats[AL_STAT_EXAMINED_VPLS] > 0 ? double(stats[AL_STAT_PARTIAL_VPLS]) / double(stats[AL_STAT_EXAMINED_VPLS]) : 0.0;
     const auto count = [](const nichols::MultiresBuffer& b, int ticket) { return ticket < 0 ? 0.0 : b.fragments(ticket); };
     double diffuseTotal = 0.0, specularTotal = 0.0;
     for (size_t k = 0; k < m_frameDiffuse.rendered.size(); ++k) {

@@ -26,6 +26,13 @@ public:
 
     static constexpr std::array<std::string_view, 4> kVisibilityModes{"incremental", "brute", "none", "shadow-maps"};
 
+    // For tests: the last frame's cell flags (R32UI over the multiresolution atlas, AL_CELL_*) and VPL
+    // bitstreams (RGBA32UI atlas array, 128 VPLs of a cell's subset per layer) of the diffuse pass,
+    // unless a specular pass ran after it (it reuses the flags), and the diffuse buffer's atlas layout.
+    const gl::Texture& cellFlags() const { return m_flags; }
+    const gl::Texture& bitstreams() const { return m_bits; }
+    const nichols::MultiresBuffer& diffuseBuffer() const { return *m_diffuse; }
+
 
 private:
     // Fragment-count tickets per level (nichols::MultiresBuffer::fragments), read by collectCounters:
