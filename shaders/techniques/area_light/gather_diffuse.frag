@@ -2,7 +2,8 @@
 // §5.3.2 Eq. 5.2 with V, §5.3.3.2; checklist items 19-20). A stencilled cell of level k represents the
 // eye-space patch of its covered pixels (mean position and normal, as isr) and sums its VPLs:
 //   E = sum_j L_j A_j V(x -> y_j) cos(x->y_j, N_x) cos(y_j->x, N_y) / |x - y_j|^2
-// (the irradiance: Eq. 5.2's diffuse form without rho / pi, which the final pass applies per pixel).
+// (the irradiance: Eq. 5.2's diffuse form without rho / pi, which the final pass applies per pixel),
+// with r^2 kept at or above A / pi near the light (alNearFieldR2: no VPL gives more than pi L).
 // Interleaved sampling (Keller & Heidrich 2001, §5.3.3.2 on 2x2 blocks): with 4 subsets the cell of
 // parity s = (x & 1) + 2 (y & 1) at its level takes VPLs s, s + 4, s + 8, ... and writes their sum;
 // resolve.comp adds the four subsets of a neighbourhood. Visibility per VPL is a bit of the cell's
@@ -88,6 +89,7 @@ void main() {
         float r2 = max(dot(d, d), 1e-12);
         vec3 l = d * inversesqrt(r2);
         float cosX = dot(n, l), cosY = emitterCosine(L, l);
+        float geometry = v.radiance.w * cosX * cosY / alNearFieldR2(r2, v.radiance.w);  // A cos cos / r^2, bounded
         if (cosX <= 0.0 || cosY <= 0.0) {
             ++culled;
             continue;
@@ -101,7 +103,7 @@ void main() {
             float vis = paraboloidVisibility(s_vplMaps, float(s + subsets * m), -l, d, L.normal.xyz, L.edgeU.xyz / L.edgeU.w,
                                              u_pass.shadow.w, u_pass.shadow.x);
             ++raysCast;
-            irradiance += vis * v.radiance.rgb * (v.radiance.w * cosX * cosY / r2);
+            irradiance += vis * v.radiance.rgb * geometry;
             continue;
         }
         if (visibility != AL_VIS_NONE) {
@@ -115,7 +117,7 @@ void main() {
         }
         if (!visible) continue;
         bits[word] |= bit;
-        irradiance += v.radiance.rgb * (v.radiance.w * cosX * cosY / r2);
+        irradiance += v.radiance.rgb * geometry;
     }
     if (visibility == AL_VIS_INCREMENTAL) imageStore(i_bits, ivec3(gl_FragCoord.xy, u_batch), bits);
     atomicAdd(u_stats[AL_STAT_RAYS_CAST], raysCast);

@@ -96,7 +96,7 @@ vec3 sampleTerm(vec3 x, vec3 n, vec3 v, float alpha, AreaLightGpu L, vec3 y, vec
         ++raysCast;
         if (voxelMarch(origin, rayEnd(L, y, x), int(u_pass.march.x), int(u_pass.march.y)) < 1.0) return vec3(0.0);
     }
-    return radiance * (f * area * cosY / r2);
+    return radiance * (f * area * cosY / alNearFieldR2(r2, area));  // the bound of area_common.glsl
 }
 
 void main() {
