@@ -246,6 +246,13 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
 }
 
+void AreaLightTechnique::bindLightTextures(FrameContext& ctx) {
+    // Light i's texture at unit i of these (the specular gather and the final pass read them by light).
+    const unsigned units[AL_MAX_LIGHTS] = {BINDING_TEX_AREA_LIGHT, BINDING_TEX_INPUT0, BINDING_TEX_INPUT1, BINDING_TEX_INPUT2};
+    for (size_t i = 0; i < AL_MAX_LIGHTS; ++i)
+        ctx.lights.areaTexture(m_lightIndices[std::min(i, m_lightIndices.size() - 1)]).bind(units[i]);
+}
+
 void AreaLightTechnique::buildLobePyramid(FrameContext& ctx) {
     const int levels = m_pyramid->levels();
     if (!m_lobe || m_lobe.width() != m_size.x || m_lobe.height() != m_size.y || m_lobe.desc().levels != levels) {
@@ -373,10 +380,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             m_pyramid->normal().bind(BINDING_TEX_TECH1);
             if (specular) {
                 m_lobe.bind(BINDING_TEX_TECH2);
-                const unsigned units[AL_MAX_LIGHTS] = {BINDING_TEX_AREA_LIGHT, BINDING_TEX_INPUT0, BINDING_TEX_INPUT1,
-                                                      BINDING_TEX_INPUT2};
-                for (size_t i = 0; i < AL_MAX_LIGHTS; ++i)
-                    ctx.lights.areaTexture(m_lightIndices[std::min(i, m_lightIndices.size() - 1)]).bind(units[i]);
+                bindLightTextures(ctx);
                 // One loop iteration per VPL plus up to raySteps march iterations for each: draws of at most
                 // half the shader loop budget (gpu/ShaderLimits.h).
                 const bool variance = m_varianceVisibility && m_visibility != "none";
@@ -519,6 +523,7 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
         m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
         m_diffuse->result().bind(BINDING_TEX_TECH0);
         (specular ? m_specularBuffer->result() : m_diffuse->result()).bind(BINDING_TEX_TECH1);
+        bindLightTextures(ctx);
         m_final.set("u_hasSpecular", specular ? 1 : 0);
         m_final.use();
         gl::Context::current()->bindEmptyVertexArray();

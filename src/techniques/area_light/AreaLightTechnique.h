@@ -42,6 +42,7 @@ private:
     };
     void updateUniforms(FrameContext& ctx);
     void buildLobePyramid(FrameContext& ctx);
+    void bindLightTextures(FrameContext& ctx);
     void renderVplShadowMaps(FrameContext& ctx);
     // The coarse-to-fine level loop of §5.3.4 over one buffer (diffuse or specular).
     PassCounts renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer, bool specular);
