@@ -39,8 +39,8 @@
 // §5.3.3.3 (24 queries of occluder-distance moments as ray fractions, 2x2 interleaved, 3x3 blur,
 // Chebyshev); visibility=shadow-maps is §5.4.6's rasterized baseline (a 64^2 paraboloid map per
 // VPL, "vpl-shadow-maps"); bitstreams are RGBA32UI image layers of 128 bits (the thesis: a 4 x 16-bit target for
-// 64 bits) written with image stores; the colour threshold compares radiance relative to the lights'
-// peak radiance; thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
+// 64 bits) written with image stores; the colour threshold compares a white receiver's radiance (the
+// display colour at 0 EV); thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
 // voxel depth range (the scene bounds in view space) are assumptions (the thesis gives none).
 // Only area lights are shaded: a scene with point, spot or directional lights or emissive materials
 // is refused, so that the output is the like-for-like counterpart of `bounce reference --bounces 0`.
@@ -108,7 +108,7 @@ void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
     v.field("shadowMapSize", m_shadowMapSize, "visibility=shadow-maps: texels per side of each VPL's map (thesis 64)", 8, 1024);
     v.field("interleave", m_interleave, "2x2 interleaved VPL subsets (§5.3.3.2)");
     v.field("incrementalStencil", m_incrementalStencil, "refine cells lit discontinuously, coarse to fine (§5.3.4); off: depth/normal/lobe criteria only");
-    v.field("colourThreshold", m_colourThreshold, "illumination discontinuity: neighbourhood range relative to the peak emitted radiance (Fig. 5.10: 0.005)", 0.0f, 1e9f);
+    v.field("colourThreshold", m_colourThreshold, "illumination discontinuity: neighbourhood range of a white receiver's radiance, W/(m^2 sr), the display colour at 0 EV (Fig. 5.10: 0.005)", 0.0f, 1e9f);
     v.field("bitCountFraction", m_bitCountFraction, "refine where at least this fraction of the VPLs is partially visible in a 3x3 neighbourhood (thesis 128 of 256); above 1: off", 0.0f, 2.0f);
     v.field("voxelColumns", m_voxelColumns, "voxel grid x/y resolution (thesis 128^2 .. 1024^2)", 1, 4096);
     v.field("voxelBits", m_voxelBits, "voxel depth bits per column, a multiple of 128 (thesis 128)", 128, 1024);
@@ -209,7 +209,6 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
 void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     gpu::AreaPassUniforms& u = m_uniforms;
     u = {};
-    m_peakRadiance = 0.0f;
     const std::vector<Light>& lights = ctx.sceneGpu.lights();
     for (size_t k = 0; k < m_lightIndices.size(); ++k) {
         const Light& l = lights[m_lightIndices[k]];
@@ -221,7 +220,6 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
         g.normal = glm::vec4(l.areaNormal(), l.area());
         g.radiance = glm::vec4(l.radiance, l.texture.textured() ? 1.0f : 0.0f);
         g.texture = glm::vec4(tex.width(), tex.height(), static_cast<float>(k) * m_vplsPerSide * m_vplsPerSide, m_vplsPerSide);
-        m_peakRadiance = std::max({m_peakRadiance, l.radiance.r, l.radiance.g, l.radiance.b});
     }
     const float visibility = m_visibility == "none"          ? AL_VIS_NONE
                              : m_visibility == "brute"       ? AL_VIS_BRUTE
@@ -236,7 +234,7 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     const float voxel = std::max(vg.depth.w, columnWidth);
     u.march = glm::vec4(m_raySteps, m_rayThickness, m_rayBias * voxel, visibility);
     u.refine = glm::vec4(m_colourThreshold, m_bitCountFraction * static_cast<float>(m_vplCount),
-                         m_incrementalStencil ? 1.0f : 0.0f, m_peakRadiance);
+                         m_incrementalStencil ? 1.0f : 0.0f, 0.0f);
     // The angle one camera pixel subtends (perspective: 2 tan(fov/2) / height, small-angle).
     const float pixelAngle = 2.0f / (ctx.camera.clipFromView[1][1] * static_cast<float>(m_size.y));
     u.lobe = glm::vec4(m_lobeThreshold, m_lobeVpls, m_lobeSpacing, pixelAngle);
@@ -455,11 +453,12 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
             buffer.result().bind(BINDING_TEX_TECH0);
             m_flags.bindImage(BINDING_IMG1, GL_READ_WRITE);
-            const float peak = std::max(m_peakRadiance, 1e-12f);
             m_discontinuity.set("u_level", k);
             m_discontinuity.set("u_levelOrigin", origin);
             m_discontinuity.set("u_size", size);
-            m_discontinuity.set("u_scale", specular ? 1.0f / peak : 1.0f / (glm::pi<float>() * peak));
+            // Display colours at bounce's default exposure (0 EV: 1 W/(m^2 sr) is about display white): the
+            // specular buffer holds radiance / F, the diffuse one irradiance, E / pi for a white receiver.
+            m_discontinuity.set("u_scale", specular ? 1.0f : 1.0f / glm::pi<float>());
             m_discontinuity.use();
             glDispatchCompute(groups(size.x), groups(size.y), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

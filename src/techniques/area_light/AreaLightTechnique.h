@@ -59,7 +59,7 @@ private:
     int m_voxelColumns = 128;          // §5.3.3: 128^2 "almost indistinguishable" from 1024^2
     int m_voxelBits = 128;             // §5.3.3: 128 bits per pixel
     bool m_voxelFootprint = true;      // deviation: fragments set the slices they span (voxelize.frag)
-    int m_raySteps = 32;               // assumption (not given; 16 misses thin walls at 128^2, docs)
+    int m_raySteps = 64;               // assumption (not given; 32 leak light past the Cornell short block's corner, docs)
     int m_rayThickness = 0;            // extra bits each side of a step's slice span (assumption; 1 over-occludes, docs)
     float m_rayBias = 1.5f;            // voxels (assumption; "bias", Fig. 5.12)
     bool m_specular = true;            // §5.3.2.1: separate Phong pass
@@ -87,7 +87,6 @@ private:
     gpu::AreaPassUniforms m_uniforms{};
     std::vector<size_t> m_lightIndices;  // scene light index of each area light shaded
     int m_vplCount = 0, m_perCell = 0, m_layers = 0;
-    float m_peakRadiance = 0.0f;
     bool m_hasSpecularMaterials = false;
     glm::ivec2 m_size{0};
     PassCounts m_frameDiffuse, m_frameSpecular;  // this frame's tickets, for collectCounters
