@@ -218,6 +218,51 @@ TEST_F(AreaLightGpuTest, SoftShadowPenumbraMatchesTheReferenceWhereTheHardShadow
     EXPECT_GT(errorHard, 2.0 * errorSoft);
 }
 
+TEST_F(AreaLightGpuTest, PartlyHiddenLightGivesThePartItSees) {
+    // A 2 m panel 1 m above the plane, over x in [0, 2]; the orthographic camera sees x, z in [-1, 1]
+    // only. A slab 0.5 m up over x in [1.1, 2.5], beside the view, hides the panel's far part from the
+    // plane's visible right half: a receiver at x = 0.8 sees about half of the panel. Each VPL has its
+    // own visibility (§5.3.3), so such a receiver must get the light of the part it sees. The slab is
+    // outside the camera's frustum and so outside the screen-space voxels (the thesis's grid holds what
+    // the camera sees); area-light's second grid along the light (voxelOutside) holds it.
+    Light light = ceilingLight(1.0f, 2.0f, glm::vec3(2.0f));
+    light.position.x = 1.0f;
+    Scene scene = gputest::planeScene(light, Projection::Orthographic);
+    scene.camera.orthoHeight = 2.0f;
+    MeshBuilder b("slab");
+    b.axisBox({1.1f, 0.5f, -1.5f}, {2.5f, 0.52f, 1.5f});
+    scene.meshes.push_back(b.take());
+    Object o;
+    o.name = "slab";
+    o.mesh = static_cast<uint32_t>(scene.meshes.size() - 1);
+    scene.objects.push_back(o);
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    constexpr int kSize = 64;
+    const Image ref = directReference(scene, kSize, 512);
+    const AreaRun run = renderAreaLight(scene, {}, kSize);
+    const AreaRun open = renderAreaLight(scene, {{"visibility", "none"}}, kSize);
+    const AreaRun screenOnly = renderAreaLight(scene, {{"voxelOutside", "false"}}, kSize);
+    double error = 0.0, errorScreenOnly = 0.0, seen = 0.0;
+    int partial = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const float lit = luminance(open.direct.at(x, y)), r = luminance(ref.at(x, y));
+            if (!(lit > 0.0f) || r > 0.8f * lit || r < 0.2f * lit) continue;  // the partly hidden receivers
+            ++partial;
+            seen += r / lit;
+            error += std::abs(luminance(run.direct.at(x, y)) - r) / r;
+            errorScreenOnly += std::abs(luminance(screenOnly.direct.at(x, y)) - r) / r;
+        }
+    ASSERT_GT(partial, 200);
+    error /= partial;
+    errorScreenOnly /= partial;
+    RecordProperty("partlyHiddenPixels", std::to_string(partial));
+    RecordProperty("meanFractionSeen", std::to_string(seen / partial));
+    RecordProperty("meanRelativeError", std::to_string(error));
+    RecordProperty("meanRelativeErrorScreenGridOnly", std::to_string(errorScreenOnly));
+    EXPECT_LT(error, 0.1);
+}
+
 TEST_F(AreaLightGpuTest, IncrementalVisibilityCastsFewerRaysAndAgreesWithBruteForce) {
     auto scene = loadScene("cornell-box-area");
     ASSERT_TRUE(scene.ok());

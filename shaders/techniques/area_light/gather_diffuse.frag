@@ -23,6 +23,7 @@
 // counters (BINDING_SSBO_TECH1). Output: subset irradiance W/m^2 (alpha 1 = rendered here).
 #include "techniques/nichols/atlas.glsl"
 #include "techniques/area_light/area_common.glsl"
+#define SV_OUTER_GRID  // rays beyond the camera's frustum are tested in the grid along the lights (voxelOutside)
 #include "techniques/screen_voxels/march.glsl"
 #include "techniques/paraboloid/paraboloid.glsl"
 // The stencil must cull before this shader runs although it stores to images and buffers (GL would

@@ -53,9 +53,11 @@
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace bounce {
 
@@ -76,6 +78,11 @@ constexpr float kVplMapFarInDiagonals = 1.01f;
 // their texels' depths by centimetres. On cornell-box-area at 1024 VPLs 1e-3 lost 42 % of the
 // receivers' energy to acne, 1e-2 14 %, 2e-2 (2 cm there) 7 %, as much as the voxels' over-occlusion.
 constexpr float kVplMapDepthBias = 2e-2f;
+// The second voxel grid's box (voxelOutside) is the scene's and the lights' bounds grown by this
+// fraction of its diagonal, and at least kMinOuterExtent metres, each side (engineering choices: its
+// faces then lie inside the grid, and a flat scene still has a depth range).
+constexpr float kOuterGridMargin = 0.01f;
+constexpr float kMinOuterExtent = 1e-3f;
 
 gl::ProgramDesc fullscreen(std::string_view name, std::string_view fragment) {
     return {std::string(name), {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, std::string(fragment)}}};
@@ -97,6 +104,46 @@ gl::Texture arrayTexture(std::string_view name, glm::ivec2 size, int layers, GLe
     return gl::Texture::create(name, d);
 }
 
+// The view of the second voxel grid (voxelOutside): orthographic, along the first light's normal
+// (rays towards a light run mostly along it), over the scene's bounds and every shaded light's
+// rectangle, so that it holds every surface a segment from a receiver to a light can cross.
+render::View outerGridView(const render::SceneGpu& sceneGpu, const std::vector<Light>& lights,
+                           const std::vector<size_t>& shaded, glm::ivec2 columns) {
+    const Light& first = lights[shaded.front()];
+    const glm::vec3 n = first.areaNormal(), t = glm::normalize(first.edgeU), b = glm::cross(n, t);
+    glm::vec3 lo, hi;
+    sceneGpu.scene().bounds(sceneGpu.time(), lo, hi);
+    std::vector<glm::vec3> points;
+    for (int c = 0; c < 8; ++c) points.emplace_back((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    for (size_t i : shaded)
+        for (int c = 0; c < 4; ++c)
+            points.push_back(lights[i].position + ((c & 1) - 0.5f) * lights[i].edgeU + ((c >> 1) - 0.5f) * lights[i].edgeV);
+    glm::vec3 mn(std::numeric_limits<float>::max()), mx(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : points) {
+        const glm::vec3 q(glm::dot(p, t), glm::dot(p, b), glm::dot(p, n));
+        mn = glm::min(mn, q);
+        mx = glm::max(mx, q);
+    }
+    // A margin of kOuterGridMargin of the box's size (at least kMinOuterExtent) keeps its faces off the
+    // grid's borders.
+    const float margin = std::max(kOuterGridMargin * glm::length(mx - mn), kMinOuterExtent);
+    mn -= margin;
+    mx += margin;
+    render::View v;
+    for (int c = 0; c < 3; ++c) {  // rows t, b, n (GLM is column-major: [col][row])
+        v.viewFromWorld[c][0] = t[c];
+        v.viewFromWorld[c][1] = b[c];
+        v.viewFromWorld[c][2] = n[c];
+    }
+    v.viewFromWorld[3][2] = -mx.z;  // the eye on the box's +n face, looking along -n
+    v.nearPlane = 0.0f;
+    v.farPlane = mx.z - mn.z;
+    v.clipFromView = glm::ortho(mn.x, mx.x, mn.y, mx.y, v.nearPlane, v.farPlane);
+    v.eye = glm::vec3(glm::inverse(v.viewFromWorld)[3]);
+    v.viewport = columns;
+    return v;
+}
+
 }  // namespace
 
 void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
@@ -112,6 +159,7 @@ void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
     v.field("bitCountFraction", m_bitCountFraction, "refine where at least this fraction of the VPLs is partially visible in a 3x3 neighbourhood (thesis 128 of 256); above 1: off", 0.0f, 2.0f);
     v.field("voxelColumns", m_voxelColumns, "voxel grid x/y resolution (thesis 128^2 .. 1024^2)", 1, 4096);
     v.field("voxelBits", m_voxelBits, "voxel depth bits per column, a multiple of 128 (thesis 128)", 128, 1024);
+    v.field("voxelOutside", m_voxelOutside, "a second grid along the lights holds what lies outside the camera's frustum, for the parts of rays there (deviation; off: the thesis's screen-space grid only, in which they are free)");
     v.field("voxelFootprint", m_voxelFootprint, "a fragment sets every depth slice its triangle spans in the pixel (deviation; off: the one slice at the pixel centre, the thesis)");
     v.field("raySteps", m_raySteps, "uniform samples per visibility ray (assumption)", 1, 256);
     v.field("rayThickness", m_rayThickness, "extra depth bits tested each side of a step (the thick ray; assumption)", 0, 64);
@@ -187,6 +235,9 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY(m_diffuse, nichols::MultiresBuffer::create());
     BOUNCE_TRY(m_specularBuffer, nichols::MultiresBuffer::create());
     BOUNCE_TRY(m_voxels, voxels::ScreenVoxels::create());
+    BOUNCE_TRY(m_outerVoxels, voxels::ScreenVoxels::create());
+    const gpu::ScreenVoxelsGpu noGrid{};  // 0 bits: march.glsl's outer grid is empty (voxelOutside off)
+    m_noOuterGrid = gl::Buffer::create("areaLight.noOuterGrid", sizeof(noGrid), &noGrid);
     BOUNCE_TRY(m_vplProgram, gl::Program::build({"areaLight.vpls", {{GL_COMPUTE_SHADER, "techniques/area_light/vpls.comp"}}}));
     BOUNCE_TRY(m_lobeProgram, gl::Program::build({"areaLight.lobePyramid", {{GL_COMPUTE_SHADER, "techniques/area_light/lobe_pyramid.comp"}}}));
     BOUNCE_TRY(m_classify, gl::Program::build({"areaLight.classify", {{GL_COMPUTE_SHADER, "techniques/area_light/classify.comp"}}}));
@@ -242,6 +293,16 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     u.shadow = glm::vec4(kVplMapDepthBias, 0.0f, 0.0f, kVplMapFarInDiagonals * m_sceneDiagonal);
     m_passUbo.upload(0, sizeof(u), &u);
     m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+}
+
+void AreaLightTechnique::bindVoxels() {
+    m_voxels->bind();
+    if (m_voxelOutside) {
+        m_outerVoxels->bind(BINDING_UBO_VOXELS_OUTER, BINDING_TEX_VOXELS_OUTER);
+    } else {
+        m_noOuterGrid.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_VOXELS_OUTER);
+        m_voxels->bitsTexture().bind(BINDING_TEX_VOXELS_OUTER);  // never read: a valid texture there
+    }
 }
 
 void AreaLightTechnique::bindLightTextures(FrameContext& ctx) {
@@ -339,7 +400,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
     counts.rendered.assign(static_cast<size_t>(levels), -1);
     counts.tree.assign(static_cast<size_t>(levels), -1);
     gl::Program& gather = specular ? m_gatherSpecular : m_gatherDiffuse;
-    if (m_visibility != "none") m_voxels->bind();
+    if (m_visibility != "none") bindVoxels();
     m_vpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
     m_stats.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
 
@@ -476,7 +537,10 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     m_stats.clearZero();
     if (m_visibility != "none") {
         auto s = ctx.timers.scope("voxelize");
-        m_voxels->build(ctx.drawer, ctx.camera, {glm::ivec2(m_voxelColumns), m_voxelBits, m_voxelFootprint});
+        const voxels::GridSize grid{glm::ivec2(m_voxelColumns), m_voxelBits, m_voxelFootprint};
+        if (m_voxelOutside)
+            m_outerVoxels->build(ctx.drawer, outerGridView(ctx.sceneGpu, ctx.sceneGpu.lights(), m_lightIndices, grid.columns), grid);
+        m_voxels->build(ctx.drawer, ctx.camera, grid);
     }
     updateUniforms(ctx);
     if (m_visibility == "shadow-maps") {

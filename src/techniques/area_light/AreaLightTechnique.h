@@ -43,6 +43,7 @@ private:
     void updateUniforms(FrameContext& ctx);
     void buildLobePyramid(FrameContext& ctx);
     void bindLightTextures(FrameContext& ctx);
+    void bindVoxels();
     void renderVplShadowMaps(FrameContext& ctx);
     // The coarse-to-fine level loop of §5.3.4 over one buffer (diffuse or specular).
     PassCounts renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer, bool specular);
@@ -59,6 +60,7 @@ private:
     int m_voxelColumns = 128;          // §5.3.3: 128^2 "almost indistinguishable" from 1024^2
     int m_voxelBits = 128;             // §5.3.3: 128 bits per pixel
     bool m_voxelFootprint = true;      // deviation: fragments set the slices they span (voxelize.frag)
+    bool m_voxelOutside = true;        // deviation: a second grid along the lights beyond the camera's frustum
     int m_raySteps = 64;               // assumption (not given; 32 leak light past the Cornell short block's corner, docs)
     int m_rayThickness = 0;            // extra bits each side of a step's slice span (assumption; 1 over-occludes, docs)
     float m_rayBias = 1.5f;            // voxels (assumption; "bias", Fig. 5.12)
@@ -73,7 +75,8 @@ private:
 
     std::optional<nichols::MinMaxPyramid> m_pyramid;
     std::optional<nichols::MultiresBuffer> m_diffuse, m_specularBuffer;
-    std::optional<voxels::ScreenVoxels> m_voxels;
+    std::optional<voxels::ScreenVoxels> m_voxels, m_outerVoxels;
+    gl::Buffer m_noOuterGrid;  // an empty grid's uniforms, bound when voxelOutside is off
     gl::Program m_vplProgram, m_lobeProgram, m_classify, m_stencil, m_gatherDiffuse, m_gatherSpecular, m_resolve,
         m_discontinuity, m_final;
     gl::Buffer m_passUbo, m_vpls, m_stats;
