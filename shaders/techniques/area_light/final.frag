@@ -24,6 +24,7 @@ layout(binding = BINDING_TEX_INPUT0) uniform sampler2D s_light1;
 layout(binding = BINDING_TEX_INPUT1) uniform sampler2D s_light2;
 layout(binding = BINDING_TEX_INPUT2) uniform sampler2D s_light3;
 uniform bool u_hasSpecular;
+uniform vec4 u_emitterRect;  // window pixels (x0, y0, x1, y1) around the lights' images: rays only there
 layout(location = 0) out vec4 o_radiance;
 
 // Rays per pixel for the emitters' box filter, on an n-rooks pattern (every sixteenth of the pixel's
@@ -66,7 +67,8 @@ void main() {
     vec3 emitted = vec3(0.0);
     float coverage = 0.0;
     const float kWeight = 1.0 / float(kEmitterSamples);
-    for (int k = 0; k < kEmitterSamples; ++k) {
+    bool nearEmitter = all(greaterThanEqual(gl_FragCoord.xy, u_emitterRect.xy)) && all(lessThanEqual(gl_FragCoord.xy, u_emitterRect.zw));
+    for (int k = 0; k < (nearEmitter ? kEmitterSamples : 0); ++k) {
         vec2 sub = gl_FragCoord.xy - 0.5 + (vec2((kRookStride * k) % kEmitterSamples, k) + 0.5) / float(kEmitterSamples);
         vec2 ndc = sub * u_frame.viewport.zw * 2.0 - 1.0;
         vec4 nearH = u_frame.worldFromClip * vec4(ndc, -1.0, 1.0), farH = u_frame.worldFromClip * vec4(ndc, 1.0, 1.0);

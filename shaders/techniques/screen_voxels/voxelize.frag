@@ -5,8 +5,8 @@
 // ORs the bits together (glLogicOp(GL_OR) on RGBA32UI targets). Slices are linear in view depth
 // between the grid's near and far (as Eisemann & Décoret's uniform slicing). Output target k holds
 // bits 128k .. 128k + 127 (component c, bit b = slice 128k + 32c + b).
-// The span: the triangle's screen image clipped to the pixel's square (Sutherland-Hodgman, carrying
-// depth / w and 1 / w, which are affine in screen space), whose vertices hold the extreme depths.
+// The span: the depths at the vertices of the triangle's screen image clipped to the pixel's square
+// (depth / w and 1 / w are affine in screen space), found without building the clipped polygon.
 // Setting only the bit of the centre's depth left a surface seen at a grazing angle (a floor, a table
 // top at eye level) with empty slices between its columns' bits, through which rays passed undetected
 // (ScreenVoxelsGpuTest.GrazingSurfacesHaveNoDepthGaps); the earlier footprint, the centre's depth +-
@@ -28,45 +28,50 @@ flat in vec3 g_invW;
 uniform bool u_footprint;
 layout(location = 0) out uvec4 o_bits[SV_MAX_LAYERS];
 
-// A triangle clipped by the four sides of a square keeps at most 3 + 4 vertices.
-#define SV_CLIP_VERTICES 7
-
-// Keeps the part of polygon (x, y, depth / w, 1 / w) where sgn * (p[axis] - bound) >= 0.
-void clipPolygon(inout vec4 poly[SV_CLIP_VERTICES], inout int count, int axis, float bound, float sgn) {
-    vec4 kept[SV_CLIP_VERTICES];
-    int n = 0;
-    for (int i = 0; i < count; ++i) {
-        vec4 a = poly[i], b = poly[(i + 1) % count];
-        float da = sgn * (a[axis] - bound), db = sgn * (b[axis] - bound);
-        if (da >= 0.0 && n < SV_CLIP_VERTICES) kept[n++] = a;
-        if ((da >= 0.0) != (db >= 0.0) && n < SV_CLIP_VERTICES) kept[n++] = mix(a, b, da / (da - db));
-    }
-    poly = kept;
-    count = n;
+// Widens [lo, hi] by the view depth at a point of the triangle given by its depth / w and 1 / w.
+void include(vec2 dw, inout float lo, inout float hi) {
+    float z = dw.x / dw.y;
+    lo = min(lo, z);
+    hi = max(hi, z);
 }
 
-// The view-depth range of the triangle inside this fragment's pixel; false when the triangle has no
-// finite screen image or the clip left nothing (rounding at a vertex), for the fallback.
+// The view-depth range of the triangle inside this fragment's pixel square; false when the triangle
+// has no finite screen image (the fallback). Depth / w and 1 / w are affine on the triangle's screen
+// image, so the extremes lie at the vertices of the triangle clipped to the square: the triangle's
+// vertices inside the square, the square's corners inside the triangle, and where the triangle's
+// edges cross the square's sides. Each candidate is tested directly (no clipped polygon is built:
+// llvmpipe spills such arrays to memory, 60x the cost of the whole voxelization).
 bool exactSpan(out float zLo, out float zHi) {
-    zLo = zHi = 0.0;
-    if (g_invW == vec3(0.0)) return false;
-    vec4 poly[SV_CLIP_VERTICES];
-    for (int i = 0; i < 3; ++i) poly[i] = vec4(g_screenX[i], g_screenY[i], g_depthOverW[i], g_invW[i]);
-    int count = 3;
-    vec2 p0 = floor(gl_FragCoord.xy);
-    clipPolygon(poly, count, 0, p0.x, 1.0);
-    clipPolygon(poly, count, 0, p0.x + 1.0, -1.0);
-    clipPolygon(poly, count, 1, p0.y, 1.0);
-    clipPolygon(poly, count, 1, p0.y + 1.0, -1.0);
-    if (count == 0) return false;
     zLo = 1e30;
     zHi = -1e30;
-    for (int i = 0; i < count; ++i) {
-        float z = poly[i].z / poly[i].w;
-        zLo = min(zLo, z);
-        zHi = max(zHi, z);
+    if (g_invW == vec3(0.0)) return false;
+    vec2 lo = floor(gl_FragCoord.xy), hi = lo + 1.0;
+    vec2 v0 = vec2(g_screenX.x, g_screenY.x), v1 = vec2(g_screenX.y, g_screenY.y), v2 = vec2(g_screenX.z, g_screenY.z);
+    vec2 a0 = vec2(g_depthOverW.x, g_invW.x), a1 = vec2(g_depthOverW.y, g_invW.y), a2 = vec2(g_depthOverW.z, g_invW.z);
+    for (int i = 0; i < 3; ++i) {
+        vec2 p = i == 0 ? v0 : (i == 1 ? v1 : v2), q = i == 0 ? v1 : (i == 1 ? v2 : v0);
+        vec2 ap = i == 0 ? a0 : (i == 1 ? a1 : a2), aq = i == 0 ? a1 : (i == 1 ? a2 : a0);
+        if (all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi))) include(ap, zLo, zHi);
+        vec2 d = q - p;
+        for (int k = 0; k < 4; ++k) {  // the square's sides x = lo.x, x = hi.x, y = lo.y, y = hi.y
+            int axis = k / 2;
+            float side = (k % 2) == 0 ? lo[axis] : hi[axis];
+            if (d[axis] == 0.0) continue;
+            float t = (side - p[axis]) / d[axis];
+            float other = p[1 - axis] + t * d[1 - axis];
+            if (t >= 0.0 && t <= 1.0 && other >= lo[1 - axis] && other <= hi[1 - axis]) include(mix(ap, aq, t), zLo, zHi);
+        }
     }
-    return true;
+    float area = (v1.x - v0.x) * (v2.y - v0.y) - (v1.y - v0.y) * (v2.x - v0.x);
+    if (area != 0.0) {
+        for (int k = 0; k < 4; ++k) {  // the square's corners, by their barycentric coordinates
+            vec2 c = vec2((k & 1) == 0 ? lo.x : hi.x, (k & 2) == 0 ? lo.y : hi.y);
+            float b1 = ((c.x - v0.x) * (v2.y - v0.y) - (c.y - v0.y) * (v2.x - v0.x)) / area;
+            float b2 = ((v1.x - v0.x) * (c.y - v0.y) - (v1.y - v0.y) * (c.x - v0.x)) / area;
+            if (b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0) include((1.0 - b1 - b2) * a0 + b1 * a1 + b2 * a2, zLo, zHi);
+        }
+    }
+    return zLo <= zHi;
 }
 
 void main() {

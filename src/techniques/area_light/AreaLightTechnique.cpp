@@ -9,7 +9,9 @@
 //                     bouncing square).
 //   "voxelize"        the screen-space binary voxelization of the view frustum, voxelColumns^2 columns x
 //                     voxelBits (thesis 128) linear depth slices, logical-OR blending (§5.3.3; shared
-//                     machinery, techniques/screen_voxels).
+//                     machinery, techniques/screen_voxels); with voxelOutside a second grid of the same
+//                     size, orthographic along the first light over the scene's and lights' bounds, for
+//                     the parts of rays outside the camera's frustum (a deviation).
 //   "min-max-mipmap"  the ch. 4 eye pyramid (depth derivative, normal min-max) down to coarsest (thesis:
 //                     incremental visibility starts at 64^2), and "lobe-mipmap" the BRDF-frequency
 //                     pyramid (min/max specular roughness per cell, §5.3.2.1).
@@ -28,11 +30,13 @@
 //   "discontinuity"   cells whose neighbourhood varies by more than colourThreshold are refined (§5.3.4).
 //   then the same loop over the specular buffer ("gather-specular": the separate Phong pass, lobe-miss
 //   culling, lobe-width refinement, 5x5 lobe-centred texture samples when fewer than 9 VPLs fall in
-//   the lobe; §5.3.2.1), and "final": emission + albedo/pi E + F S per pixel.
+//   the lobe; §5.3.2.1), and "final": the emitters box-filtered over each pixel (16 rays against the
+//   lights' rectangles, as the reference's pixels see them) + albedo/pi E + F S per pixel.
 // visibility=brute ray-marches every VPL at every cell (§5.3.3.1, the baseline of Fig. 5.4);
 // visibility=none is §5.3.2's V = 1.
 //
-// Deviations and assumptions (docs/techniques/area-light.md): bounce's BRDF is GGX, so the "Phong"
+// Deviations and assumptions (docs/techniques/area-light.md): Eq. 5.2's r^2 is kept at or above A / pi
+// (a near-field bound: no VPL gives more than pi L); bounce's BRDF is GGX, so the "Phong"
 // pass evaluates the GGX specular lobe and takes its width from the equivalent Phong exponent;
 // the specular pass multiplies a per-pixel Schlick Fresnel at the end; the specular pass ray-marches
 // its VPLs without bitstreams; the lobe samples of sharp lobes take the variance visibility of
@@ -142,6 +146,26 @@ render::View outerGridView(const render::SceneGpu& sceneGpu, const std::vector<L
     v.eye = glm::vec3(glm::inverse(v.viewFromWorld)[3]);
     v.viewport = columns;
     return v;
+}
+
+// The window-pixel rectangle (x0, y0, x1, y1) around the shaded lights' images, one pixel wider each
+// side; the whole frame when a corner is at or behind the camera plane. The final pass box-filters the
+// emitters only inside it.
+glm::vec4 emitterRect(const render::View& camera, const std::vector<Light>& lights, const std::vector<size_t>& shaded,
+                      glm::ivec2 size) {
+    const glm::vec4 frame(0.0f, 0.0f, static_cast<float>(size.x), static_cast<float>(size.y));
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    const glm::mat4 clipFromWorld = camera.clipFromWorld();
+    for (size_t i : shaded)
+        for (int c = 0; c < 4; ++c) {
+            const glm::vec3 p = lights[i].position + ((c & 1) - 0.5f) * lights[i].edgeU + ((c >> 1) - 0.5f) * lights[i].edgeV;
+            const glm::vec4 h = clipFromWorld * glm::vec4(p, 1.0f);
+            if (!(h.w > 1e-6f)) return frame;
+            const glm::vec2 px = (glm::vec2(h) / h.w * 0.5f + 0.5f) * glm::vec2(size);
+            lo = glm::min(lo, px);
+            hi = glm::max(hi, px);
+        }
+    return glm::vec4(lo - 1.0f, hi + 1.0f);
 }
 
 }  // namespace
@@ -587,6 +611,7 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
         m_diffuse->result().bind(BINDING_TEX_TECH0);
         (specular ? m_specularBuffer->result() : m_diffuse->result()).bind(BINDING_TEX_TECH1);
         bindLightTextures(ctx);
+        m_final.set("u_emitterRect", emitterRect(ctx.camera, ctx.sceneGpu.lights(), m_lightIndices, m_size));
         m_final.set("u_hasSpecular", specular ? 1 : 0);
         m_final.use();
         gl::Context::current()->bindEmptyVertexArray();
