@@ -13,11 +13,13 @@
 // cells within two cells, 4 to 9 of them) agree on it, and re-cast where they disagree or fewer than
 // two of them have bits. A VPL the receiver faces away from, or that emits away from it, is not traced
 // (bit 0).
-// One draw handles the 128 VPLs of bitstream layer u_batch (so any VPL count stays within the shader
+// One draw handles VPLs [u_vplBegin, u_vplEnd) of the cell's subset, within bitstream layer u_batch
+// (128 VPLs; a draw of part of a layer adds its bits to the earlier draws'), so that any VPL count stays within the shader
 // loop budget, gpu/ShaderLimits.h); the host adds the draws (blending).
 // visibility=shadow-maps replaces the march by a lookup in the VPL's paraboloid shadow map (the
 // baseline of §5.4.6: 1024 rasterized 64^2 maps).
-// Host uniforms: u_level, u_levelOrigin, u_parentOrigin, u_parentSize, u_coarsest, u_batch, u_shade.
+// Host uniforms: u_level, u_levelOrigin, u_parentOrigin, u_parentSize, u_coarsest, u_batch, u_vplBegin,
+// u_vplEnd, u_shade.
 // Inputs: eye pyramid geometry and normal (BINDING_TEX_TECH0, TECH1), cell flags (TECH2), VPLs
 // (BINDING_SSBO_TECH0), the voxel grid (march.glsl). In/out: bitstreams (image BINDING_IMG0),
 // counters (BINDING_SSBO_TECH1). Output: subset irradiance W/m^2 (alpha 1 = rendered here).
@@ -41,6 +43,8 @@ uniform ivec2 u_parentOrigin;
 uniform ivec2 u_parentSize;
 uniform int u_coarsest;
 uniform int u_batch;
+uniform int u_vplBegin;
+uniform int u_vplEnd;
 uniform bool u_shade;
 layout(location = 0) out vec4 o_irradiance;
 
@@ -53,7 +57,8 @@ void main() {
     int perCell = int(u_pass.counts.z);
     int s = alParity(cell, subsets);
     int visibility = int(u_pass.march.w);
-    int first = SV_BITS_PER_LAYER * u_batch, end = min(perCell, first + SV_BITS_PER_LAYER);
+    int layerStart = SV_BITS_PER_LAYER * u_batch;
+    int first = u_vplBegin, end = min(perCell, min(u_vplEnd, layerStart + SV_BITS_PER_LAYER));
 
     // The parent level's verdicts on this layer's VPLs: AND and OR over the tree cells of this
     // subset's 3x3 region around the parent.
@@ -80,7 +85,8 @@ void main() {
     // normal, and the same distance off the emitter at the VPL's end (rayEnd).
     vec3 origin = x + n * u_pass.march.z;
     int steps = int(u_pass.march.x), thickness = int(u_pass.march.y);
-    uvec4 bits = uvec4(0u);
+    // The bits earlier draws of this layer found (this cell's own texel: no other fragment writes it).
+    uvec4 bits = visibility == AL_VIS_INCREMENTAL && first > layerStart ? imageLoad(i_bits, ivec3(gl_FragCoord.xy, u_batch)) : uvec4(0u);
     vec3 irradiance = vec3(0.0);
     uint raysCast = 0u, reused = 0u, culled = 0u;
     for (int m = first; m < end; ++m) {
@@ -95,8 +101,8 @@ void main() {
             ++culled;
             continue;
         }
-        int word = (m - first) / 32;
-        uint bit = 1u << uint((m - first) % 32);
+        int word = (m - layerStart) / 32;
+        uint bit = 1u << uint((m - layerStart) % 32);
         bool visible = true;
         if (visibility == AL_VIS_SHADOW_MAPS) {
             // The rasterized baseline: a filtered lookup, so V is fractional at shadow edges.

@@ -319,6 +319,16 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
 }
 
+int AreaLightTechnique::vplsPerDraw() const {
+    // A ray costs at most raySteps march iterations, each testing up to voxelBits / 32 words of a
+    // column in the camera's grid and as many in the second grid, plus its VPL loop iteration: draws
+    // of at most half the shader loop budget (gpu/ShaderLimits.h; the other half covers a specular
+    // cell's 25 lobe samples and the region loops). With 64 steps and 128 bits, 56 VPLs a draw.
+    const int wordsPerTest = m_voxelBits / 32;
+    const int rayIterations = 1 + m_raySteps * (1 + 2 * wordsPerTest);
+    return std::max(1, gl::kShaderLoopIterationBudget / 2 / rayIterations);
+}
+
 void AreaLightTechnique::bindVoxels() {
     m_voxels->bind();
     if (m_voxelOutside) {
@@ -481,7 +491,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                 }
                 gather.set("u_variance", variance ? 1 : 0);
                 gather.set("u_levelSize", size);
-                const int perDraw = std::max(1, gl::kShaderLoopIterationBudget / 2 / (m_raySteps + 2));
+                const int perDraw = vplsPerDraw();
                 const int batches = (m_vplCount + perDraw - 1) / perDraw;
                 counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, batches, [&](int b) {
                     gather.set("u_vplFirst", static_cast<unsigned>(b * perDraw));
@@ -494,14 +504,28 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                 gather.set("u_parentOrigin", parentOrigin);
                 gather.set("u_parentSize", parentSize);
                 gather.set("u_coarsest", coarsest);
-                // One draw per bitstream layer: 128 VPLs, each at most raySteps march iterations.
-                const auto setBatch = [&](int b) { gather.set("u_batch", b); };
+                // Draws of at most vplsPerDraw() VPLs of one bitstream layer each (the shader loop budget):
+                // a layer's later draws add their bits to the earlier ones' (the image barrier between).
+                std::vector<glm::ivec3> draws;  // layer, first VPL, end VPL (of the cell's subset)
+                const int perDraw = vplsPerDraw();
+                for (int layer = 0; layer < m_layers; ++layer) {
+                    const int end = std::min(m_perCell, (layer + 1) * SV_BITS_PER_LAYER);
+                    for (int first = layer * SV_BITS_PER_LAYER; first < end; first += perDraw)
+                        draws.emplace_back(layer, first, std::min(end, first + perDraw));
+                }
+                const auto setBatch = [&](int b) {
+                    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                    gather.set("u_batch", draws[static_cast<size_t>(b)].x);
+                    gather.set("u_vplBegin", draws[static_cast<size_t>(b)].y);
+                    gather.set("u_vplEnd", draws[static_cast<size_t>(b)].z);
+                };
+                const int batches = static_cast<int>(draws.size());
                 gather.set("u_shade", 1);
-                counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, m_layers, setBatch);
+                counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, batches, setBatch);
                 if (incremental) {
                     gather.set("u_shade", 0);
                     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-                    counts.tree[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 2, m_layers, setBatch);
+                    counts.tree[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 2, batches, setBatch);
                     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
                 }
                 glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -44,6 +44,7 @@ private:
     void buildLobePyramid(FrameContext& ctx);
     void bindLightTextures(FrameContext& ctx);
     void bindVoxels();
+    int vplsPerDraw() const;
     void renderVplShadowMaps(FrameContext& ctx);
     // The coarse-to-fine level loop of §5.3.4 over one buffer (diffuse or specular).
     PassCounts renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer, bool specular);
