@@ -311,7 +311,25 @@ TEST_F(RadiosityGpuTest, RefusesScenesItCannotShade) {
         EXPECT_NE(p2.error().message.find("no area light and no emissive material"), std::string::npos) << p2.error().message;
 
         auto t3 = createTechnique(method);
-        EXPECT_FALSE(applySettings(**t3, {{"visibilitySamples", "9"}}, method).ok());
+        EXPECT_FALSE(applySettings(**t3, {{"hemicubeSize", "0"}}, method).ok());
+        // The reconstruction pass's settings: the shooting methods take them, radiosity-gather (which never
+        // reconstructs) refuses them as unknown, one line naming the setting.
+        for (const char* setting : {"visibilitySamples", "ffSubdivideRatio", "ffSubdivisions"}) {
+            auto t4 = createTechnique(method);
+            auto applied = applySettings(**t4, {{setting, "1"}}, method);
+            if (std::string(method) == "radiosity-gather") {
+                ASSERT_FALSE(applied.ok()) << setting;
+                EXPECT_NE(applied.error().message.find(std::string("unknown setting '") + setting + "'"), std::string::npos)
+                    << applied.error().message;
+                EXPECT_EQ(applied.error().message.find('\n'), std::string::npos);
+            } else {
+                EXPECT_TRUE(applied.ok()) << setting << ": " << (applied.ok() ? "" : applied.error().message);
+            }
+        }
+        if (std::string(method) != "radiosity-gather") {
+            auto t5 = createTechnique(method);
+            EXPECT_FALSE(applySettings(**t5, {{"visibilitySamples", "9"}}, method).ok());
+        }
     }
 }
 
