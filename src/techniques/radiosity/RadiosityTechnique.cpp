@@ -91,7 +91,7 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
 }
 
 void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
-    m_frameShooters = m_frameIterations = m_frameMovingPatches = 0;
+    m_frameShooters = m_frameIterations = m_frameMovingPatches = m_frameRedistributionHemicubes = 0;
     m_system->resetCounters();
     {
         auto s = ctx.timers.scope("radiosity.solve");
@@ -111,6 +111,7 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     ctx.counters["converged"] = m_converged ? 1.0 : 0.0;
     ctx.counters["movingElements"] = static_cast<double>(m_system->movingElementCount());
     ctx.counters["movingPatches"] = m_frameMovingPatches;
+    ctx.counters["redistributionHemicubes"] = m_frameRedistributionHemicubes;
 }
 
 std::vector<ShooterRect> RadiosityTechnique::subdivide(uint32_t quad, float flux) const {
