@@ -308,6 +308,13 @@ TEST_F(RadiosityGpuTest, RefusesScenesItCannotShade) {
         EXPECT_NE(p.error().message.find("light 'spot' is a spot light"), std::string::npos) << p.error().message;
         EXPECT_NE(p.error().message.find(method), std::string::npos) << p.error().message;
 
+        // A textured (animated) screen: its picture would be lost in a uniform emitter quad.
+        const Scene screen = builtin("area-screen");
+        auto tScreen = createTechnique(method);
+        auto pScreen = Pipeline::create(screen, std::move(*tScreen), {16, 16}, smallRenderSettings());
+        ASSERT_FALSE(pScreen.ok());
+        EXPECT_NE(pScreen.error().message.find("area light 'screen' is textured"), std::string::npos) << pScreen.error().message;
+
         Scene dark = facingSquares(0.2f, 0.2f, 0.3f, true);
         dark.materials[0].emission = glm::vec3(0.0f);
         auto t2 = createTechnique(method);
