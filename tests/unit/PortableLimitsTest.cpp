@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <map>
 #include <set>
+#include <sstream>
 
 using namespace bounce;
 using namespace bounce::gl;
@@ -114,4 +117,29 @@ TEST(PortableLimits, AllowListParsesAndRejectsUnknownKeys) {
     ASSERT_FALSE(bad.ok());
     EXPECT_NE(bad.error().message.find("a.txt:1"), std::string::npos);
     EXPECT_FALSE(parseAllowList("p imageUnits\n", "a.txt").ok());  // no finding number
+}
+
+TEST(PortableLimits, DocsTableShowsTheCodesValues) {
+    // docs/gpu.md "Limits" prints the table; a value changed in one place and not the other fails here.
+    std::ifstream in(std::string(BOUNCE_SOURCE_DIR) + "/docs/gpu.md");
+    ASSERT_TRUE(in) << "docs/gpu.md";
+    std::map<std::string, std::vector<long long>> rows;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("| `", 0) != 0) continue;
+        std::vector<std::string> cells;
+        std::stringstream ss(line.substr(1));
+        for (std::string cell; std::getline(ss, cell, '|');) cells.push_back(cell);
+        if (cells.size() < 9) continue;
+        const std::string key = cells[0].substr(cells[0].find('`') + 1, cells[0].rfind('`') - cells[0].find('`') - 1);
+        std::vector<long long> values;
+        for (size_t c = 3; c < 9; ++c) values.push_back(std::stoll(cells[c]));
+        rows[key] = values;
+    }
+    for (const LimitRow& r : limitTable()) {
+        const auto it = rows.find(std::string(r.key));
+        ASSERT_NE(it, rows.end()) << r.key << " missing from docs/gpu.md";
+        const std::vector<long long> expected = {r.glMinimum, r.nvidia, r.amd, r.intel, r.llvmpipe, r.portable()};
+        EXPECT_EQ(it->second, expected) << r.key;
+    }
+    EXPECT_EQ(rows.size(), limitTable().size());
 }
