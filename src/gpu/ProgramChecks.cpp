@@ -206,8 +206,13 @@ Expected<void> auditLinkedProgram(std::string_view label, GLuint program, const 
     if (portable) {
         // Every resource past its portable limit, in one line: the program cannot link on some vendor's driver.
         std::string refused;
-        for (const LimitFinding& f : findings)
-            if (f.pastPortable && !findAllowed(*allowed, label, f.key)) refused += (refused.empty() ? "" : "; ") + f.message;
+        const std::string prefix = fmt::format("program '{}': ", label);
+        for (const LimitFinding& f : findings) {
+            if (!f.pastPortable || findAllowed(*allowed, label, f.key)) continue;
+            // One line: the program named once, then each resource.
+            refused += refused.empty() ? f.message
+                                       : "; " + (f.message.rfind(prefix, 0) == 0 ? f.message.substr(prefix.size()) : f.message);
+        }
         if (!refused.empty()) return makeError("{} (BOUNCE_PORTABLE_LIMITS=1; docs/gpu.md \"Limits\")", refused);
     }
     for (const LimitFinding& f : findings) {
