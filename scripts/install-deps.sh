@@ -18,6 +18,8 @@ packages=(
   # `bounce report` (matplotlib plots) and its test in headless Chromium
   parallel munge slurmctld slurmd slurm-client
   python3 python3-matplotlib chromium
+  # issue 29: every shader variant through Khronos' reference compiler (tests/portable/glslang_test.py)
+  glslang-tools
   # the sanitizer and fuzz build (CMakePresets.json `sanitize`): clang with ASan, UBSan and libFuzzer
   clang-14 libclang-rt-14-dev
 )

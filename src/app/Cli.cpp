@@ -2,8 +2,10 @@
 
 #include "app/Options.h"
 #include "core/Log.h"
+#include "gpu/DeviceSelection.h"
 #include "scene/SceneLoader.h"
 
+#include <cstdlib>
 #include <iostream>
 #include <new>
 
@@ -27,6 +29,9 @@ int runCli(int argc, char** argv) {
     app.require_subcommand(1);
     std::string logLevel = "warn";
     app.add_option("--log-level", logLevel, "trace, debug, info, warn, error, off")->capture_default_str();
+    std::string gpu;
+    app.add_option("--gpu", gpu,
+                   "EGL device index for headless GL (`bounce info` lists them; overrides BOUNCE_EGL_DEVICE; docs/gpu.md)");
     CommandAction action;
     registerListCommand(app, action);
     registerInfoCommand(app, action);
@@ -40,7 +45,7 @@ int runCli(int argc, char** argv) {
     // CLI11 reports an unknown command as "a subcommand is required"; name it instead.
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--log-level") {
+        if (arg == "--log-level" || arg == "--gpu") {
             ++i;
             continue;
         }
@@ -70,6 +75,22 @@ int runCli(int argc, char** argv) {
         return 1;  // bad input is exit status 1 whatever CLI11's own code for it (README)
     }
     setLogLevel(logLevel);
+    const std::string command0 = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
+    if (!gpu.empty()) {
+        // Checked before any work: an index past the enumeration fails here, naming the device count.
+        auto index = gl::parseDeviceIndex(gpu, "--gpu");
+        if (!index.ok()) return failCommand(command0, index.error().message);
+        auto devices = gl::enumerateEglDevices();
+        if (!devices.ok()) return failCommand(command0, "--gpu: " + devices.error().message);
+        gl::DeviceRequest request;
+        request.index = *index;
+        request.source = "--gpu";
+        if (const char* p = std::getenv("BOUNCE_EGL_PLATFORM")) request.platform = p;
+        if (auto chosen = gl::chooseDevices(*devices, request); !chosen.ok()) return failCommand(command0, chosen.error().message);
+        gl::setDeviceOverride(*index);
+        // Processes this one starts (sweep workers, `bounce report`) use the same device.
+        ::setenv("BOUNCE_EGL_DEVICE", gpu.c_str(), 1);
+    }
     // Scene files' `settings` are checked against every technique's declared settings, whatever runs.
     setSceneSettingCheck(checkSceneSetting);
     if (!action) return failCommand("", "no command");

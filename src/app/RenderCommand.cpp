@@ -33,15 +33,17 @@ struct RenderOptions {
 // --camera-path: every frame of the path's time range, each written to the --out pattern. A failure
 // part way removes the frames already written, so a run leaves all of its frames or none.
 int renderCameraPath(const RenderOptions& o, Scene& scene, std::unique_ptr<Technique> technique,
-                     const render::RenderSettings& renderSettings, glm::ivec2 size, Component component) {
+                     render::RenderSettings renderSettings, glm::ivec2 size, Component component) {
     const std::string cmd = "render";
     auto path = readCameraPath(o.cameraPath);
     if (!path.ok()) return failCommand(cmd, "--camera-path " + path.error().message);
     if (auto r = applyLightPoses(scene, path->lights); !r.ok()) return failCommand(cmd, "--camera-path " + o.cameraPath + ": " + r.error().message);
     if (!path->scene.empty() && path->scene != scene.name)
         spdlog::warn("camera path {} was recorded on scene '{}', replayed on '{}'", o.cameraPath, path->scene, scene.name);
-    auto context = gl::Context::createHeadless();
+    auto context = gl::Context::createHeadless(o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
     if (!context.ok()) return failCommand(cmd, context.error().message);
+    if (auto r = applyAllSettings(scene, *technique, renderSettings, o.settings, (*context)->info().profile); !r.ok())
+        return failCommand(cmd, r.error().message);
     auto pipeline = Pipeline::create(scene, std::move(technique), size, renderSettings);
     if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
     ToneMap toneMap;
@@ -110,8 +112,13 @@ int runRender(const RenderOptions& o) {
     warnOneSidedSurfaces(*scene, *size, static_cast<uint32_t>(o.startFrame));
     if (!o.cameraPath.empty()) return renderCameraPath(o, *scene, std::move(*technique), renderSettings, *size, *component);
 
-    auto context = gl::Context::createHeadless();
+    // A run whose timings are recorded (--stats) gets no debug context: synchronous KHR_debug output
+    // serialises the driver, and bench/ measures without it (docs/gpu.md "Measured runs").
+    auto context = gl::Context::createHeadless(o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
     if (!context.ok()) return failCommand(cmd, context.error().message);
+    // The device profile's defaults (core/DeviceProfile.h), then the scene's and the command line's values again.
+    if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings, (*context)->info().profile); !r.ok())
+        return failCommand(cmd, r.error().message);
     auto pipeline = Pipeline::create(*scene, std::move(*technique), *size, renderSettings);
     if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
 

@@ -67,7 +67,8 @@ Expected<void> writeRecord(const Study& study, const Job& job, const json& recor
 Expected<gl::Context*> context() {
     static std::unique_ptr<gl::Context> ctx;
     if (!ctx) {
-        BOUNCE_TRY(ctx, gl::Context::createHeadless());
+        // Render and temporal jobs record timings: no debug context (docs/gpu.md "Measured runs").
+        BOUNCE_TRY(ctx, gl::Context::createHeadless(gl::measuredContextConfig()));
     }
     return ctx.get();
 }
@@ -89,8 +90,8 @@ Expected<std::unique_ptr<Loaded>> load(const Study& study, const Job& job) {
     BOUNCE_TRY(auto technique, createTechnique(variant.technique));
     std::vector<std::string> settings;
     for (const auto& [k, v] : variant.settings) settings.push_back(k + "=" + v);
-    BOUNCE_TRY_VOID(applyAllSettings(out->scene, *technique, out->renderSettings, settings));
-    BOUNCE_TRY_VOID(context());
+    BOUNCE_TRY(gl::Context* const ctx, context());
+    BOUNCE_TRY_VOID(applyAllSettings(out->scene, *technique, out->renderSettings, settings, ctx->info().profile));
     auto pipeline = Pipeline::create(out->scene, std::move(technique), study.size, out->renderSettings);
     if (!pipeline) out->refusal = pipeline.error().message;
     else out->pipeline = std::move(*pipeline);
