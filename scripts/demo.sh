@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders every built-in scene with every registered technique into OUT (PNG, tone-mapped).
 # A technique that cannot shade a scene refuses it with a one-line error and exit status 1 (hemicube
-# radiosity takes only area lights and emissive surfaces): that pair is listed as skipped. Any
+# radiosity refuses textured area lights): that pair is listed as skipped. Any
 # other failure (a crash, an abort) stops the demo.
 set -euo pipefail
 bounce="$1"; out="$2"; size="$3"

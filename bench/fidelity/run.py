@@ -66,9 +66,11 @@ def compare(bounce, test, ref):
     return {k: m[k] for k in ("energy", "relMse", "relRms", "flipLdr", "testMean", "referenceMean")}
 
 
-def render(bounce, scene, technique, size, frames, component, out):
+def render(bounce, scene, technique, size, frames, component, out, start=0):
     cmd = [bounce, "render", "--scene", scene, "--technique", technique, "--size", f"{size}x{size}", "--frames",
            str(frames), "--component", component, "--out", out]
+    if start:
+        cmd += ["--start-frame", str(start)]
     t0 = time.monotonic()
     p = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.monotonic() - t0
@@ -94,11 +96,15 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         refs = {}
 
-        def reference(scene, flags):
-            key = (scene, tuple(flags))
+        # The reference at the frame the technique's image shows (its last): in an animated scene the
+        # lights or objects have moved by then.
+        def reference(scene, flags, frame):
+            key = (scene, tuple(flags), frame)
             if key not in refs:
                 path = os.path.join(tmp, f"ref-{len(refs)}.exr")
                 cmd = [bounce, "reference", "--scene", scene, "--size", f"{size}x{size}", "--spp", str(spp), "--out", path] + flags
+                if frame:
+                    cmd += ["--frame", str(frame)]
                 p = subprocess.run(cmd, capture_output=True, text=True, check=True)
                 noise = re.search(r"noise ([\d.]+)% per pixel, ([\d.]+)% image mean", p.stdout + p.stderr)
                 refs[key] = (path, rel(cmd), float(noise.group(2)) / 100 if noise else None)
@@ -114,12 +120,12 @@ def main():
                 if refusal:
                     entry["refused"] = refusal
                 else:
-                    ref, ref_cmd, noise = reference(scene, flags)
+                    ref, ref_cmd, noise = reference(scene, flags, frames - 1)
                     entry.update({"wall_s": wall, "reference": ref_cmd, "referenceNoise": noise})
                     entry["metrics"] = compare(bounce, out, ref)
                     # No-GI image of the same scope: the shared direct pass's image of this component.
                     nogi = os.path.join(tmp, "nogi.exr")
-                    render(bounce, scene, "direct", size, 1, component, nogi)
+                    render(bounce, scene, "direct", size, 1, component, nogi, start=frames - 1)
                     entry["noGi"] = compare(bounce, nogi, ref)
                     e, r, r0 = entry["metrics"]["energy"], entry["metrics"]["relMse"], entry["noGi"]["relMse"]
                     entry["withinBounds"] = e is not None and abs(e - 1.0) <= ENERGY_TOLERANCE and r < r0

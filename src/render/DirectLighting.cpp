@@ -38,4 +38,26 @@ void DirectLighting::render(const GBuffer& gbuffer, const LightSet& lights, cons
     glDisable(GL_BLEND);
 }
 
+void DirectLighting::addLights(const GBuffer& gbuffer, const LightSet& lights, const gl::Texture& target,
+                               const std::vector<size_t>& which) {
+    m_fbo.attach(GL_COLOR_ATTACHMENT0, target);
+    m_fbo.setDrawBuffers(1);
+    BOUNCE_CHECK(m_fbo.complete(), "direct-light framebuffer");
+    m_fbo.bind();
+    glViewport(0, 0, target.width(), target.height());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    gbuffer.bind();
+    gl::Context::current()->bindEmptyVertexArray();
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    m_light.use();
+    for (size_t i : which) {
+        lights.bind(i);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_BLEND);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 }  // namespace bounce::render

@@ -5,6 +5,8 @@
 #include "render/GBuffer.h"
 #include "render/LightSet.h"
 
+#include <vector>
+
 namespace bounce::render {
 
 class DirectLighting {
@@ -12,6 +14,10 @@ public:
     static Expected<DirectLighting> create();
     // Writes into `target` (RGBA32F, G-buffer size). FrameUniforms must be bound.
     void render(const GBuffer& gbuffer, const LightSet& lights, const gl::Texture& target);
+    // Adds the direct light of lights `which` (indices into `lights`) to `target`, no emission: for a
+    // technique that computes the rest of the image itself (radiosity with point lights).
+    void addLights(const GBuffer& gbuffer, const LightSet& lights, const gl::Texture& target,
+                   const std::vector<size_t>& which);
 
 private:
     gl::Program m_emission, m_light;

@@ -56,7 +56,7 @@ expect_failure("zero size" "--size '0x8'" ${png} render --scene cornell-box --si
 expect_failure("malformed size" "--size 'big'" ${png} render --scene cornell-box --size big --out ${png})
 expect_failure("zero frames" "--frames 0" ${png} render --scene cornell-box --frames 0 --size 8x8 --out ${png})
 expect_failure("negative start frame" "--start-frame -1 must not be negative" ${png} render --scene cornell-box --start-frame -1 --size 8x8 --out ${png})
-expect_failure("radiosity with a spot light" "light 'spot' is a spot light" ${png} render --scene cornell-box --technique radiosity-pr --size 8x8 --out ${png})
+expect_failure("radiosity with a textured area light" "area light 'screen' is textured" ${png} render --scene area-screen --technique radiosity-pr --size 8x8 --out ${png})
 expect_failure("bad component" "unknown component" ${png}
                render --scene cornell-box --component both --size 8x8 --out ${png})
 expect_failure("bad output extension" "unsupported image extension" ${WORK}/out.bmp

@@ -1,12 +1,15 @@
 // van de Hoef 2013 sec. 4.1 / Fig. 4.1.1: the final display. Quads are drawn with their total
 // radiosity texture B, bilinearly filtered (the texel centres on the edges make it continuous across
 // quads), or nearest-filtered for the debug view (u_nearest). Emitters are part of the solution (no separate
-// direct pass): o_direct gets the emitted radiance E, o_indirect the reflected part B - E, so
-// full = B.
+// direct pass): o_direct gets the emitted radiance E, o_indirect the reflected part B - E - D, so
+// full = B where the scene has only emitters. D is the direct light of point, spot and directional
+// lights at the elements (bounce's extension): the host adds it per pixel to o_direct (the shared
+// direct pass's shadow-mapped light), so full = E + direct(pixel) + (B - E - D).
 #include "common/scene.glsl"
 #include "techniques/radiosity/patch.glsl"
 
 layout(binding = BINDING_TEX_TECH0) uniform sampler2D s_total;
+layout(binding = BINDING_TEX_TECH1) uniform sampler2D s_light;  // D (1x1 zero without punctual lights)
 uniform vec2 u_atlasSize;
 uniform int u_nearest;
 
@@ -25,8 +28,11 @@ void main() {
     if (dot(g_normalWorld, u_view.eyePosition.xyz - g_posWorld) <= 0.0) return;  // one-sided patches
     RadQuadGpu q = u_quads[g_quad];
     vec2 st = clamp(g_st, 0.0, 1.0);
-    vec3 b = u_nearest != 0 ? texelFetch(s_total, ivec2(floor(vec2(q.atlas.xy) + 0.5 + st * vec2(q.atlas.zw - 1u))), 0).rgb
-                            : texture(s_total, radAtlasUv(q, st, u_atlasSize)).rgb;
+    ivec2 texel = ivec2(floor(vec2(q.atlas.xy) + 0.5 + st * vec2(q.atlas.zw - 1u)));
+    vec2 uv = radAtlasUv(q, st, u_atlasSize);
+    bool oneTexel = textureSize(s_light, 0).x == 1;
+    vec3 b = u_nearest != 0 ? texelFetch(s_total, texel, 0).rgb : texture(s_total, uv).rgb;
+    vec3 d = oneTexel ? vec3(0.0) : u_nearest != 0 ? texelFetch(s_light, texel, 0).rgb : texture(s_light, uv).rgb;
     o_direct.rgb = q.emission.rgb;
-    o_indirect.rgb = max(b - q.emission.rgb, vec3(0.0));
+    o_indirect.rgb = max(b - q.emission.rgb - d, vec3(0.0));
 }

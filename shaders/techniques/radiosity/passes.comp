@@ -9,7 +9,11 @@
 //               B_e = E_e + rho_e sum (gather) or B_s += rho_s sum (GATHERRADIOSITY, Alg. 4.4)
 //   5 RESOLVE   average the samples of a multisampled hemicube array (colour and distance)
 //   6 FFMUL     the mip fallback's first step: hemicube x delta form factors into mip level 0
-// Element radiosity lives in the atlas images: img0 B (total), img1 Bu (unshot), rgba32f.
+//   7 LIGHTS    the direct light of point, spot and directional lights at the elements (D_new), and
+//               its change shot into the solution: B += D_new - D, Bu += D_new - D, D = D_new
+//               (bounce's extension: the thesis's only sources are emitting patches)
+// Element radiosity lives in the atlas images: img0 B (total), img1 Bu (unshot), rgba32f; the
+// punctual lights' direct radiance in img2 D_new (this frame's) and img3 D (what B holds of it).
 #include "techniques/radiosity/patch.glsl"
 #include "techniques/radiosity/hemicube.glsl"
 
@@ -27,7 +31,15 @@ uniform int u_old;      // 1: place with the old bodies
 
 ivec2 texelOf(RadElementGpu e) { return ivec2(e.info.y & 0xFFFFu, e.info.y >> 16); }
 
-#if RAD_PASS == 0 || RAD_PASS == 1 || RAD_PASS == 3 || RAD_PASS == 5
+// 1x1 when the scene has no point, spot or directional light: loads outside an image return 0.
+#if RAD_PASS == 3 || RAD_PASS == 7
+layout(binding = BINDING_IMG2, rgba32f) uniform coherent image2D i_lightNew;
+#endif
+#if RAD_PASS == 3 || RAD_PASS == 4 || RAD_PASS == 7
+layout(binding = BINDING_IMG3, rgba32f) uniform coherent image2D i_light;
+#endif
+
+#if RAD_PASS == 0 || RAD_PASS == 1 || RAD_PASS == 3 || RAD_PASS == 5 || RAD_PASS == 7
 layout(local_size_x = 64) in;
 #else
 layout(local_size_x = 256) in;
@@ -144,7 +156,7 @@ void main() {
 }
 #elif RAD_PASS == 3
 // u_mode 0: Bu = 0 over the elements of shooters [u_first, u_first + u_count) (one group each);
-// 1: B = Bu = E on the receivers u_receivers; 2: B = Bu = 0 on them.
+// 1: B = Bu = E + D_new, D = D_new on the receivers u_receivers; 2: B = Bu = D = 0 on them.
 uniform int u_receivers;
 void main() {
     if (u_mode == 0) {
@@ -162,9 +174,11 @@ void main() {
     RadElementGpu e = u_elements[ei];
     bool moving = radBodyMoving(e.info.z);
     if ((u_receivers == RAD_RECEIVERS_STATIC && moving) || (u_receivers == RAD_RECEIVERS_MOVING && !moving)) return;
-    vec4 v = u_mode == 1 ? vec4(e.emission.rgb, 0.0) : vec4(0.0);
+    vec4 d = u_mode == 1 ? vec4(imageLoad(i_lightNew, texelOf(e)).rgb, 0.0) : vec4(0.0);
+    vec4 v = u_mode == 1 ? vec4(e.emission.rgb, 0.0) + d : vec4(0.0);
     imageStore(i_total, texelOf(e), v);
     imageStore(i_unshot, texelOf(e), v);
+    imageStore(i_light, texelOf(e), d);
 }
 #elif RAD_PASS == 4
 // RAD_SOURCE 0: multisampled RGBA16F array (resolve folded into the sum); 1: single-sampled; 2: the
@@ -178,7 +192,7 @@ layout(binding = BINDING_TEX_TECH3) uniform sampler2DArray s_deltaFF;
 uniform int u_resolution;
 uniform int u_samples;
 uniform int u_topLevel;
-// u_mode 0: B_e = E_e + rho_e sum, Bu_e = 0 at the record's element (gather); 1: B_s += rho_s sum
+// u_mode 0: B_e = E_e + D_e + rho_e sum, Bu_e = 0 at the record's element (gather); 1: B_s += rho_s sum
 // at the record's shooter's single element (GATHERRADIOSITY).
 shared vec3 s_acc[256];
 void main() {
@@ -224,7 +238,7 @@ void main() {
     RadElementGpu e = u_elements[ei];
     ivec2 t = texelOf(e);
     if (u_mode == 0) {
-        imageStore(i_total, t, vec4(e.emission.rgb + e.albedo.rgb * sum, 0.0));
+        imageStore(i_total, t, vec4(e.emission.rgb + imageLoad(i_light, t).rgb + e.albedo.rgb * sum, 0.0));
         imageStore(i_unshot, t, vec4(0.0));
     } else {
         imageStore(i_total, t, imageLoad(i_total, t) + vec4(e.albedo.rgb * sum, 0.0));
@@ -259,5 +273,41 @@ void main() {
     for (int s = 0; s < u_samples; ++s) v += texelFetch(s_hemicube, c, s);
     float ff = texelFetch(s_deltaFF, ivec3(c.xy, c.z % 5), 0).r;
     imageStore(i_weighted, c, vec4(v.rgb / float(u_samples) * ff, 0.0));
+}
+#elif RAD_PASS == 7
+#include "common/lighting.glsl"
+// u_mode 0: D_new (u_accumulate 0: =, 1: +=) rho E cos V / pi of the light bound at BINDING_UBO_LIGHT
+// (with its shadow maps) at every element: the light's direct radiance as the element reflects it,
+// the "emission" the element shoots on (PatchModel.h punctualDirectRadiance is the CPU's unshadowed
+// version). 1: on u_receivers, the change since D shot into the solution as unshot radiosity.
+uniform int u_accumulate;
+uniform int u_receivers;
+void main() {
+    uint ei = gl_GlobalInvocationID.x;
+    if (ei >= u_count) return;
+    RadElementGpu e = u_elements[ei];
+    ivec2 t = texelOf(e);
+    if (u_mode == 0) {
+        // Every element receives, zero-area ghosts too: the display filters their radiosity.
+        uint body = e.info.z;
+        vec3 x = (radWorldFromObject(body, false) * vec4(e.position.xyz, 1.0)).xyz;
+        vec3 n = normalize(radNormalToWorld(body, false, u_quads[e.info.x].normal.xyz));
+        vec3 l;
+        vec3 irradiance = punctualIrradiance(u_light, x, l);
+        float cosTheta = max(dot(n, l), 0.0);
+        vec4 d = vec4(0.0);
+        if (cosTheta > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0)
+            d.rgb = e.albedo.rgb * irradiance * (cosTheta * kInvPi) * shadowVisibility(u_light, x, n);
+        if (u_accumulate != 0) d += imageLoad(i_lightNew, t);
+        imageStore(i_lightNew, t, d);
+        return;
+    }
+    bool moving = radBodyMoving(e.info.z);
+    if ((u_receivers == RAD_RECEIVERS_STATIC && moving) || (u_receivers == RAD_RECEIVERS_MOVING && !moving)) return;
+    vec4 dNew = imageLoad(i_lightNew, t);
+    vec4 delta = vec4((dNew - imageLoad(i_light, t)).rgb, 0.0);
+    imageStore(i_total, t, imageLoad(i_total, t) + delta);
+    imageStore(i_unshot, t, imageLoad(i_unshot, t) + delta);
+    imageStore(i_light, t, vec4(dNew.rgb, 0.0));
 }
 #endif

@@ -5,6 +5,7 @@
 #include "techniques/radiosity/radiosity_shared.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
@@ -62,6 +63,31 @@ glm::mat4 lightFrame(const Light& light) {
                      glm::vec4(light.position, 1.0f));
 }
 
+glm::vec3 punctualDirectRadiance(const Light& light, glm::vec3 p, glm::vec3 n, glm::vec3 albedo) {
+    glm::vec3 l{0.0f}, irradiance{0.0f};
+    switch (light.type) {
+        case LightType::Area: return glm::vec3(0.0f);
+        case LightType::Directional:
+            l = -glm::normalize(light.direction);
+            irradiance = light.irradiance;
+            break;
+        case LightType::Point:
+        case LightType::Spot: {
+            const glm::vec3 d = light.position - p;
+            const float r2 = std::max(glm::dot(d, d), 1e-12f);  // as lighting.glsl
+            l = d / std::sqrt(r2);
+            irradiance = light.intensity / r2;
+            if (light.type == LightType::Spot) {
+                const float cosAlpha = glm::dot(-l, glm::normalize(light.direction));
+                if (cosAlpha < std::cos(light.cutoffAngle) || cosAlpha <= 0.0f) return glm::vec3(0.0f);
+                irradiance *= std::pow(cosAlpha, light.falloffExponent);
+            }
+            break;
+        }
+    }
+    return albedo * irradiance * std::max(glm::dot(n, l), 0.0f) * glm::one_over_pi<float>();
+}
+
 void PatchModel::addElements(Quad& q, const std::function<glm::vec3(glm::vec2)>& albedo) {
     q.firstElement = static_cast<uint32_t>(m_elements.size());
     const auto quad = static_cast<uint32_t>(&q - m_quads.data());
@@ -95,12 +121,11 @@ bool PatchModel::bodyAnimated(const Scene& scene, uint32_t body) const {
 }
 
 Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& opt) {
-    static const char* kTypeNames[] = {"point", "spot", "directional", "area"};
     for (const Light& l : scene.lights) {
-        if (l.type != LightType::Area)
-            return makeError("light '{}' is a {} light: hemicube radiosity shades only area lights and emissive surfaces "
-                             "(van de Hoef 2013 sec. 4.1: light sources are emitting patches)",
-                             l.name, kTypeNames[static_cast<int>(l.type)]);
+        // Point, spot and directional lights are not patches: their direct light is shot into the
+        // elements as the first unshot radiosity (RadiositySystem::computeLights, radiosity.md
+        // "Point, spot and directional lights").
+        if (l.type != LightType::Area) continue;
         // An emitter quad has one uniform radiance on its front: a texture (possibly animated) or a second
         // emitting side would be lost without a word (area-screen's bars: 3.6x the path tracer's light).
         if (l.texture.kind != AreaTexture::Kind::None || l.twoSided)
@@ -279,6 +304,7 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
 
     // 2. Area lights: one emitter quad each, in the light's rest frame (world space at t = 0).
     for (size_t li = 0; li < scene.lights.size(); ++li) {
+        if (scene.lights[li].type != LightType::Area) continue;
         const Light l = scene.lights[li].at(0.0f);
         if (!(l.area() > 0.0f)) return makeError("area light '{}' has zero area", l.name);
         Quad q;
@@ -302,7 +328,8 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
     if (pm.m_quads.empty()) return makeError("the scene has no surface of non-zero area");
     bool emitter = false;
     for (const Quad& q : pm.m_quads) emitter = emitter || (q.flags & RAD_QUAD_EMITTER);
-    if (!emitter) return makeError("the scene has no area light and no emissive material: radiosity has nothing to shoot");
+    for (const Light& l : scene.lights) emitter = emitter || l.type != LightType::Area;
+    if (!emitter) return makeError("the scene has no light and no emissive material: radiosity has nothing to shoot");
     if (pm.m_elements.size() > opt.maxElements)
         return makeError("more than {} radiosity elements: raise elementSize (now {} m)", opt.maxElements, opt.elementSize);
 

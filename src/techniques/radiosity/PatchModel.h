@@ -73,8 +73,9 @@ struct TriangleRef {
 
 class PatchModel {
 public:
-    // Errors: a light other than an area light, no emitter at all, degenerate-only geometry, more
-    // than maxElements elements (naming the element size to raise).
+    // Errors: a textured or two-sided area light, no light and no emitter at all, degenerate-only
+    // geometry, more than maxElements elements (naming the element size to raise). Point, spot and
+    // directional lights make no quads (RadiositySystem shoots their direct light into the elements).
     static Expected<PatchModel> build(const Scene& scene, const PatchOptions& options);
 
     const std::vector<Quad>& quads() const { return m_quads; }
@@ -113,5 +114,11 @@ private:
 
 // Light body frame: columns edgeU, edgeV, normal, position of the light at time t.
 glm::mat4 lightFrame(const Light& light);
+
+// The radiance rho E cos / pi that a surface point p (unit normal n, world space) of diffuse albedo rho
+// reflects of a point, spot or directional light's direct light, unshadowed (common/lighting.glsl's
+// punctualIrradiance, the GPU's version); zero for an area light. The CPU side uses it to scale the
+// shooting thresholds; the GPU evaluates it with shadow-map visibility.
+glm::vec3 punctualDirectRadiance(const Light& light, glm::vec3 p, glm::vec3 n, glm::vec3 albedo);
 
 }  // namespace bounce::radiosity

@@ -148,6 +148,28 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
     const glm::ivec2 atlas = pm.atlasSize();
     s.m_total = gl::Texture::create2D("radiosity.B", atlas.x, atlas.y, GL_RGBA32F);
     s.m_unshot = gl::Texture::create2D("radiosity.Bu", atlas.x, atlas.y, GL_RGBA32F);
+    // The direct light of point, spot and directional lights at the elements (passes.comp LIGHTS):
+    // atlas-sized only when the scene has such a light (1x1 otherwise: the passes' loads read 0).
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].type != LightType::Area) s.m_punctual.push_back(i);
+    const glm::ivec2 lightSize = s.m_punctual.empty() ? glm::ivec2(1) : atlas;
+    s.m_lightNew = gl::Texture::create2D("radiosity.Dnew", lightSize.x, lightSize.y, GL_RGBA32F);
+    s.m_light = gl::Texture::create2D("radiosity.D", lightSize.x, lightSize.y, GL_RGBA32F);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(s.m_lightNew.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    glClearTexImage(s.m_light.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    // The shooting thresholds' scale (emittedPower, RadiosityTechnique's maxEmission) counts each
+    // punctual light's unshadowed direct light at the rest pose as emission.
+    for (const Element& e : pm.elements()) {
+        const Quad& q = pm.quads()[e.quad];
+        const glm::mat4 world = pm.bodyTransform(scene, q.body, 0.0f);
+        const glm::vec3 x(world * glm::vec4(e.position, 1.0f));
+        const glm::vec3 n = glm::normalize(glm::mat3(glm::transpose(glm::inverse(world))) * q.normal);
+        glm::vec3 d{0.0f};
+        for (size_t i : s.m_punctual) d += punctualDirectRadiance(scene.lights[i].at(0.0f), x, n, e.albedo);
+        s.m_emittedPower += e.area * luminance(d);
+        s.m_maxLightRadiance = std::max(s.m_maxLightRadiance, luminance(d));
+    }
 
     // Hemicubes.
     const int R = opt.hemicubeSize, Rb = opt.backSize, layers = static_cast<int>(5 * kBatch);
@@ -217,6 +239,10 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
     BOUNCE_TRY(s.m_integrateMip, computeProgram("radiosity.integrate.mip", 4, 2));
     BOUNCE_TRY(s.m_resolve, computeProgram("radiosity.resolve", 5));
     BOUNCE_TRY(s.m_ffMultiply, computeProgram("radiosity.ffMultiply", 6));
+    BOUNCE_TRY(s.m_lightPass, computeProgram("radiosity.lights", 7));
+    if (!s.m_punctual.empty()) {
+        BOUNCE_TRY(s.m_directLights, render::DirectLighting::create());
+    }
     BOUNCE_TRY(s.m_reconstruct, gl::Program::build({"radiosity.reconstruct", {{GL_COMPUTE_SHADER, "techniques/radiosity/reconstruct.comp"}}}));
     return sys;
 }
@@ -232,6 +258,7 @@ void RadiositySystem::bindCommon() const {
     m_stats.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_RAD_STATS);
     m_total.bindImage(BINDING_IMG0, GL_READ_WRITE);
     m_unshot.bindImage(BINDING_IMG1, GL_READ_WRITE);
+    m_light.bindImage(BINDING_IMG3, GL_READ_WRITE);
 }
 
 void RadiositySystem::beginFrame(const Scene& scene, float time) {
@@ -285,10 +312,38 @@ size_t RadiositySystem::movingElementCount() const {
 
 void RadiositySystem::reset(int receivers, bool toEmission) {
     bindCommon();
+    m_lightNew.bindImage(BINDING_IMG2, GL_READ_ONLY);
     m_clear.use();
     m_clear.set("u_mode", toEmission ? 1 : 2);
     m_clear.set("u_receivers", receivers);
     m_clear.set("u_count", static_cast<unsigned>(m_model.elements().size()));
+    gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
+    barrier();
+}
+
+void RadiositySystem::computeLights(const render::LightSet& lights) {
+    if (m_punctual.empty()) return;
+    bindCommon();
+    m_lightNew.bindImage(BINDING_IMG2, GL_READ_WRITE);
+    m_lightPass.use();
+    m_lightPass.set("u_mode", 0);
+    m_lightPass.set("u_count", static_cast<unsigned>(m_model.elements().size()));
+    for (size_t k = 0; k < m_punctual.size(); ++k) {
+        lights.bind(m_punctual[k]);  // its uniforms and shadow maps at BINDING_UBO_LIGHT / _TEX_SHADOW(_CUBE)
+        m_lightPass.set("u_accumulate", k == 0 ? 0 : 1);
+        gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
+        barrier();
+    }
+}
+
+void RadiositySystem::applyLights(int receivers) {
+    if (m_punctual.empty()) return;
+    bindCommon();
+    m_lightNew.bindImage(BINDING_IMG2, GL_READ_WRITE);
+    m_lightPass.use();
+    m_lightPass.set("u_mode", 1);
+    m_lightPass.set("u_receivers", receivers);
+    m_lightPass.set("u_count", static_cast<unsigned>(m_model.elements().size()));
     gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
     barrier();
 }
@@ -518,8 +573,9 @@ void RadiositySystem::reconstruct(int mode, int receivers, uint32_t first, uint3
     barrier();
 }
 
-void RadiositySystem::display(render::SceneDrawer& drawer, const render::View& camera, const gl::Texture& direct,
-                              const gl::Texture& indirect, bool nearest) {
+void RadiositySystem::display(render::SceneDrawer& drawer, const render::View& camera, const render::GBuffer& gbuffer,
+                              const render::LightSet& lights, const gl::Texture& direct, const gl::Texture& indirect,
+                              bool nearest) {
     const glm::ivec2 size(direct.width(), direct.height());
     if (size != m_displaySize) {
         m_displayDepth = gl::Texture::create2D("radiosity.display.depth", size.x, size.y, GL_DEPTH_COMPONENT32F);
@@ -544,6 +600,7 @@ void RadiositySystem::display(render::SceneDrawer& drawer, const render::View& c
     glDisable(GL_BLEND);
     bindCommon();
     m_total.bind(BINDING_TEX_TECH0);
+    m_light.bind(BINDING_TEX_TECH1);
     const glm::vec2 atlas(m_model.atlasSize());
     for (int k = 0; k < 2; ++k) {
         m_display[k].use();
@@ -560,6 +617,12 @@ void RadiositySystem::display(render::SceneDrawer& drawer, const render::View& c
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    // The punctual lights' direct light at the pixels (the shared direct pass's, shadow-mapped): the
+    // elements hold it at their resolution for shooting (D) and the display's indirect is B - E - D.
+    if (!m_punctual.empty()) {
+        glViewport(0, 0, size.x, size.y);
+        m_directLights.addLights(gbuffer, lights, direct, m_punctual);
+    }
 }
 
 std::vector<glm::vec3> RadiositySystem::readAtlas(const gl::Texture& t) const {

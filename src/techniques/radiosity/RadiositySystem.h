@@ -8,6 +8,9 @@
 #include "gpu/GpuTimers.h"
 #include "gpu/Objects.h"
 #include "gpu/Program.h"
+#include "render/DirectLighting.h"
+#include "render/GBuffer.h"
+#include "render/LightSet.h"
 #include "render/SceneDrawer.h"
 #include "techniques/radiosity/PatchModel.h"
 #include "techniques/radiosity/radiosity_shared.h"
@@ -64,8 +67,16 @@ public:
     void setMovingOverride(const std::vector<char>* moving);
     size_t movingElementCount() const;
 
-    // Elements: B = Bu = E (or 0) on the selected receivers.
+    // Elements: B = Bu = E + D_new, D = D_new (or all 0) on the selected receivers.
     void reset(int receivers, bool toEmission);
+    // Point, spot and directional lights (bounce's extension, radiosity.md): D_new, the direct
+    // radiance rho E cos V / pi each element reflects of them (shadow-map visibility), then its change
+    // since the last apply shot into the solution on `receivers`: B += D_new - D, Bu += D_new - D, D =
+    // D_new (a moving light is a change of emission, as a moving emitter). No-ops without such lights.
+    void computeLights(const render::LightSet& lights);
+    void applyLights(int receivers);
+    bool hasPunctualLights() const { return !m_punctual.empty(); }
+    float maxLightRadiance() const { return m_maxLightRadiance; }  // luminance, unshadowed, at t = 0
     // One gather sweep (Alg. 4.1): a radiosity hemicube per element, integrated, B = E + rho sum.
     void gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& timers);
 
@@ -84,9 +95,10 @@ public:
     void gatherShot(uint32_t count, gl::GpuTimers& timers);
     // A reconstruction pass over every element with shooters [first, first + count) of the batch.
     void reconstruct(int mode, int receivers, uint32_t first, uint32_t count, bool insert, gl::GpuTimers& timers);
-    // B as radiance into direct (E) and indirect (B - E) targets of the camera view.
-    void display(render::SceneDrawer& drawer, const render::View& camera, const gl::Texture& direct,
-                 const gl::Texture& indirect, bool nearest);
+    // B as radiance into direct (E, plus the punctual lights' direct light per pixel) and indirect
+    // (B - E - D) targets of the camera view.
+    void display(render::SceneDrawer& drawer, const render::View& camera, const render::GBuffer& gbuffer,
+                 const render::LightSet& lights, const gl::Texture& direct, const gl::Texture& indirect, bool nearest);
 
     // Tests: element radiosity B and Bu read back (one per element, in element order).
     std::vector<glm::vec3> readTotal() const;
@@ -95,7 +107,7 @@ public:
     std::vector<gpu::RadHemicubeGpu> readHemicubeRecords(uint32_t role, uint32_t count) const;
     uint32_t hemicubesRendered() const { return m_hemicubes; }
     void resetCounters() { m_hemicubes = 0; }
-    float emittedPower() const { return m_emittedPower; }  // sum of A E luminance over emitters
+    float emittedPower() const { return m_emittedPower; }  // sum of A (E + D at rest, unshadowed) luminance
     // The hemicube arrays as the last batch left them (the viewer's debug views): five layers per
     // hemicube of the batch, 5 k + 0 the top face (R x R), 5 k + 1..4 the sides (the lower R/2 rows).
     const gl::Texture& idHemicubes(bool old) const { return old ? m_idA : m_idB; }  // R32UI: surface + 1 of the quad seen, 0 none
@@ -112,7 +124,8 @@ private:
     PatchModel m_model;
     SystemOptions m_options;
     float m_far = 100.0f, m_offset = 1e-3f;
-    float m_emittedPower = 0.0f;
+    float m_emittedPower = 0.0f, m_maxLightRadiance = 0.0f;
+    std::vector<size_t> m_punctual;  // scene.lights indices of point, spot and directional lights
     uint32_t m_maxShooters = 0, m_hemicubes = 0;
     std::vector<gpu::ObjectGpu> m_objectData;
     std::vector<gpu::RadBodyGpu> m_bodies, m_bodiesOld;
@@ -120,7 +133,8 @@ private:
     const std::vector<char>* m_movingOverride = nullptr;
     bool m_anyMoving = false, m_haveOld = false;
 
-    gl::Texture m_total, m_unshot;
+    gl::Texture m_total, m_unshot, m_lightNew, m_light;
+    render::DirectLighting m_directLights;
     gl::Buffer m_quads, m_elements, m_triangles, m_bodyBuffer, m_bodyOldBuffer, m_objectsOld, m_shooters,
         m_records, m_stats, m_pass;
     gl::Texture m_deltaFF;
@@ -131,7 +145,7 @@ private:
     glm::ivec2 m_displaySize{0};
     gl::VertexArray m_emptyVao;
     gl::Program m_hc[4], m_hcLight[4], m_display[2], m_place, m_quadStats, m_shooterPass, m_clear, m_integrateMs,
-        m_integrateSingle, m_integrateMip, m_resolve, m_ffMultiply, m_reconstruct;
+        m_integrateSingle, m_integrateMip, m_resolve, m_ffMultiply, m_reconstruct, m_lightPass;
 };
 
 }  // namespace bounce::radiosity

@@ -36,10 +36,12 @@
 //   - every border sample inset, not only the corners (PatchModel.h says why);
 //   - element pitch, border inset, shooter subdivision rule, convergence threshold, form-factor
 //     subdivision ratio are not given by the thesis: chosen and named as settings;
-//   - emitters are area lights or emissive materials; point, spot and directional lights are
-//     refused with an error (the thesis has emitting patches only);
-//   - the display splits the solution into direct = E (emitters) and indirect = B - E, so
-//     full = B; the radiosity solution has no separate direct term.
+//   - emitters are area lights or emissive materials (the thesis's emitting patches); point, spot
+//     and directional lights (bounce's extension) shoot their direct light, evaluated at the elements
+//     with shadow-map visibility (D), as the elements' first unshot radiosity; a change of D (a
+//     moving light or occluder) is shot as a change of emission;
+//   - the display splits the solution into direct = E (emitters) plus the punctual lights' direct
+//     light per pixel (the shared direct pass's) and indirect = B - E - D.
 #include "techniques/radiosity/RadiosityTechnique.h"
 
 #include "core/Image.h"
@@ -87,6 +89,8 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY(m_system, RadiositySystem::create(ctx.scene, m_options));
     m_maxEmission = 0.0f;
     for (const Element& e : m_system->patches().elements()) m_maxEmission = std::max(m_maxEmission, luminance(e.emission));
+    // Point, spot and directional lights: their brightest unshadowed element radiance is the emission scale.
+    m_maxEmission = std::max(m_maxEmission, m_system->maxLightRadiance());
     return {};
 }
 
@@ -100,7 +104,7 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     m_frameHemicubes = m_system->hemicubesRendered();
     {
         auto s = ctx.timers.scope("radiosity.display");
-        m_system->display(ctx.drawer, ctx.camera, ctx.direct, indirect, m_view == "nearest");
+        m_system->display(ctx.drawer, ctx.camera, ctx.gbuffer, ctx.lights, ctx.direct, indirect, m_view == "nearest");
     }
     const PatchModel& pm = m_system->patches();
     ctx.counters["elements"] = static_cast<double>(pm.elements().size());

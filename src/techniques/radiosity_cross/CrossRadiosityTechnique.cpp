@@ -72,6 +72,7 @@ void CrossRadiosityTechnique::solve(FrameContext& ctx) {
         for (uint32_t b = 0; b < pm.bodyCount(); ++b) m_animated[b] = pm.bodyAnimated(ctx.scene, b) ? 1 : 0;
         m_system->setMovingOverride(&m_animated);
         m_system->beginFrame(ctx.scene, ctx.time);
+        m_system->computeLights(ctx.lights);
         m_system->reset(RAD_RECEIVERS_STATIC, true);
         m_system->reset(RAD_RECEIVERS_MOVING, false);
         progressiveRefinement(ctx, m_maxIterations, 0, true);
@@ -83,7 +84,9 @@ void CrossRadiosityTechnique::solve(FrameContext& ctx) {
         return;
     }
     m_system->beginFrame(ctx.scene, ctx.time);
-    if (m_system->anyMoving()) redistribute(ctx, false);
+    m_system->computeLights(ctx.lights);
+    if (m_system->anyMoving()) redistribute(ctx, false);  // M reset to E + D_new
+    m_system->applyLights(RAD_RECEIVERS_ALL);             // the static elements' change of D, as unshot
     if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
     m_system->commit();
 }

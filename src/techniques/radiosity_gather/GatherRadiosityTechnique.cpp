@@ -27,6 +27,7 @@ void GatherRadiosityTechnique::adjustOptions(radiosity::SystemOptions& o) const 
 
 void GatherRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->beginFrame(ctx.scene, ctx.time);
+    m_system->computeLights(ctx.lights);
     m_system->reset(RAD_RECEIVERS_ALL, true);
     for (int b = 0; b < m_bounces; ++b) m_system->gatherSweep(ctx.drawer, ctx.timers);
     m_frameIterations = static_cast<uint32_t>(m_bounces);

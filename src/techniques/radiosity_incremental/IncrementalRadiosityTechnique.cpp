@@ -28,14 +28,17 @@ using namespace radiosity;
 
 void IncrementalRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->beginFrame(ctx.scene, ctx.time);
+    m_system->computeLights(ctx.lights);
     if (!m_initialised) {
         m_system->reset(RAD_RECEIVERS_ALL, true);
         progressiveRefinement(ctx, m_maxIterations, 0, false);
         m_initialised = true;
     } else if (m_system->anyMoving()) {
-        redistribute(ctx);
+        redistribute(ctx);  // M reset to E + D_new
+        m_system->applyLights(RAD_RECEIVERS_ALL);  // the static elements' change of D, as unshot
         progressiveRefinement(ctx, m_maxIterations, 1, false);
     } else {
+        m_system->applyLights(RAD_RECEIVERS_ALL);
         progressiveRefinement(ctx, m_maxIterations, 0, false);
     }
     m_system->commit();

@@ -26,6 +26,7 @@ void ShootingRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
 
 void ProgressiveRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->beginFrame(ctx.scene, ctx.time);
+    m_system->computeLights(ctx.lights);
     m_system->reset(RAD_RECEIVERS_ALL, true);
     progressiveRefinement(ctx, m_maxIterations, 0, false);
     m_system->commit();
