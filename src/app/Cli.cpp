@@ -9,8 +9,7 @@
 
 namespace bounce {
 
-int failCommand(const std::string& command, const std::string& message) {
-    // One line: the line breaks of multi-line messages (shader logs, library exceptions) become " | ".
+std::string oneLine(const std::string& message) {
     std::string line;
     for (char c : message) {
         if (c == '\r') continue;
@@ -18,7 +17,11 @@ int failCommand(const std::string& command, const std::string& message) {
         else line += c;
     }
     while (line.size() >= 3 && line.compare(line.size() - 3, 3, " | ") == 0) line.resize(line.size() - 3);
-    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << line << "\n";
+    return line;
+}
+
+int failCommand(const std::string& command, const std::string& message) {
+    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << oneLine(message) << "\n";
     return 1;
 }
 

@@ -11,5 +11,8 @@ namespace bounce {
 // Creates the context on the calling thread the first time (EGL, as `bounce render`); afterwards
 // returns it. Failure is not remembered: a later call tries again.
 Expected<gl::Context*> processContext();
+// Destroys the context now (on the thread that made it, after every GL object of the process is gone);
+// a later processContext() makes a new one. `import bounce` calls it at interpreter exit.
+void releaseProcessContext();
 
 }  // namespace bounce
