@@ -24,10 +24,11 @@ def option(args, name, default, kind=int):
 
 
 def render(bounce, scene, technique, size, frames, settings=None, params=None, out=None, component=None):
-    """Runs `bounce render --stats`; returns (run record, command)."""
+    """Runs `bounce render --stats`; returns (run record, command). `size`: N (N x N) or "WxH"."""
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "run.json")
-        cmd = [bounce, "render", "--scene", scene, "--technique", technique, "--size", f"{size}x{size}",
+        dims = size if isinstance(size, str) else f"{size}x{size}"
+        cmd = [bounce, "render", "--scene", scene, "--technique", technique, "--size", dims,
                "--frames", str(frames), "--out", out or os.path.join(tmp, "o.exr"), "--stats", stats]
         for p in params or []:
             cmd += ["--scene-param", p]

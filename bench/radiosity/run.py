@@ -8,12 +8,18 @@ R2  speed order gather >> PR > incremental > cross in the thesis's four scenes, 
     (gather PR incremental cross, gather PR ...), --reps repetitions.
 R1  cross redistribution's frame time and hemicube count as the static element count grows 4x and
     16x with the moving patches fixed (incremental radiosity beside it, for contrast).
+A   cross redistribution against PR's restart at frames 12, 100, 200 (error growth over frames) and
+    the work of its progressive propagation.
 R8  cross redistribution's per-patch cost: the GPU timer scopes radiosity.hemicubes,
     radiosity.crossProjection, radiosity.reconstruct and radiosity.integrate over the patches.
     Hemicubes per second of the gather method (indicative on llvmpipe).
 Q   Table 5.1: NRMSE (display values' RMS difference / the reference's display range), relMSE and HDR-FLIP of every method at frame 12
     (the box turned; incremental and cross after redistributing every frame since frame 0) against
-    the path tracer (every bounce, Lambert only) and against radiosity-gather at high settings.
+    the path tracer (every bounce, Lambert only) and against radiosity-gather at high settings (the
+    thesis's metric: its Table 5.1 compares with a high-quality gather). Beside the defaults, variants
+    of single settings (VARIANTS): cross without the progressive propagation after its redistributions,
+    with form-factor-weighted cross-projection rays, without REPROJECT (R7); gather without the random
+    hemicube rotation.
 
 Frame times: a frame's GPU time of the technique's scope, the median over the frames after the
 first (the first compiles shaders on llvmpipe and, for incremental and cross, holds the initial
@@ -49,6 +55,13 @@ THESIS_NRMSE = {"radiosity-gather": [0.0522469, 0.00225834, 0.0028034, 0.0110786
                 "radiosity-pr": [0.0631117, 0.00675699, 0.0098088, 0.0149107],
                 "radiosity-incremental": [0.0472801, 0.00741281, 0.0106912, 0.0197874],
                 "radiosity-cross": [0.0579452, 0.00694691, 0.0102216, 0.0147345]}
+
+
+# Q's variants: (label, method, settings), each rendered like its method's default at frame 12.
+VARIANTS = [("radiosity-cross propagate=false", "radiosity-cross", {"propagate": "false"}),
+            ("radiosity-cross crossWeights=formFactor", "radiosity-cross", {"crossWeights": "formFactor"}),
+            ("radiosity-cross reprojection=false", "radiosity-cross", {"reprojection": "false"}),
+            ("radiosity-gather randomRotation=false", "radiosity-gather", {"randomRotation": "false"})]
 
 
 def settings_for(case, method):
@@ -136,6 +149,8 @@ def main():
             ms = [v for r in runs[m] for v in frame_values(r, m)]
             entry[m] = {"frameMs": summary(ms), "command": cmds[m],
                         "hemicubes": statistics.median(counter(r, "hemicubes") for r in runs[m]),
+                        "redistributionHemicubes": statistics.median(counter(r, "redistributionHemicubes") for r in runs[m]),
+                        "iterations": statistics.median(counter(r, "iterations") for r in runs[m]),
                         "shooters": statistics.median(counter(r, "shooters") for r in runs[m]),
                         "elements": runs[m][0]["frames"][0]["counters"]["elements"],
                         "movingElements": runs[m][0]["frames"][0]["counters"].get("movingElements", 0)}
@@ -181,6 +196,7 @@ def main():
     for (m, s), rs in runs.items():
         r1.setdefault(m, {})[s] = {"frameMs": summary([v for r in rs for v in frame_values(r, m)]),
                                    "hemicubes": statistics.median(counter(r, "hemicubes") for r in rs),
+                                   "redistributionHemicubes": statistics.median(counter(r, "redistributionHemicubes") for r in rs),
                                    "staticElements": rs[0]["frames"][0]["counters"]["elements"] - rs[0]["frames"][0]["counters"].get("movingElements", 0),
                                    "command": cmds[(m, s)]}
     rec["r1"] = r1
@@ -189,6 +205,24 @@ def main():
     # Q: quality at frame 12.
     quality = {}
     with tempfile.TemporaryDirectory() as tmp:
+        # A: does cross redistribution's error grow over frames? Its progressive propagation changes the
+        # static shot radiosity between redistributions (sec. 4.5.2), so the negation of the old position
+        # is exact only up to that change. Cross after redistributing every frame since 0 against PR's
+        # restart at the same frame, and the frames' propagation work.
+        acc = {}
+        case = SCENES["cornell-large"]
+        for frame in ([12, 60] if quick else [12, 100, 200]):
+            pr_exr, cross_exr = os.path.join(tmp, "acc-pr.exr"), os.path.join(tmp, "acc-cross.exr")
+            _, prc = render(bounce, case, "radiosity-pr", 1, size, None, pr_exr, start=frame)
+            crec, cc = render(bounce, case, "radiosity-cross", frame + 1, size, None, cross_exr)
+            later = crec["frames"][1:]
+            acc[str(frame)] = {"prCommand": prc, "crossCommand": cc, "crossVsPr": compare(bounce, cross_exr, pr_exr),
+                               "propagationIterationsMedian": statistics.median(f["counters"]["iterations"] for f in later),
+                               "propagationIterationsTotal": sum(f["counters"]["iterations"] for f in later),
+                               "hemicubesMedian": statistics.median(f["counters"]["hemicubes"] for f in later),
+                               "redistributionHemicubesMedian": statistics.median(f["counters"]["redistributionHemicubes"] for f in later)}
+            print("A", frame, acc[str(frame)]["crossVsPr"], flush=True)
+        rec["accumulation"] = acc
         for name in scenes:
             case = SCENES[name]
             ref = os.path.join(tmp, f"{name}-ref.exr")
@@ -213,8 +247,18 @@ def main():
                 restarts = m in ("radiosity-gather", "radiosity-pr")
                 _, c = render(bounce, case, m, 1 if restarts else 13, size, None, exr, start=12 if restarts else 0)
                 entry[m] = {"command": c, "vsReference": compare(bounce, exr, ref), "vsGatherHigh": compare(bounce, exr, high)}
+            entry["variants"] = {}
+            for label, m, extra in VARIANTS:
+                exr = os.path.join(tmp, f"{name}-variant.exr")
+                restarts = m in ("radiosity-gather", "radiosity-pr")
+                _, c = render(bounce, case, m, 1 if restarts else 13, size, extra, exr, start=12 if restarts else 0)
+                entry["variants"][label] = {"command": c, "vsReference": compare(bounce, exr, ref), "vsGatherHigh": compare(bounce, exr, high)}
+            pr_high = entry["radiosity-pr"]["vsGatherHigh"]["nrmse"]
+            entry["crossOverPrNrmseVsGatherHigh"] = entry["radiosity-cross"]["vsGatherHigh"]["nrmse"] / pr_high if pr_high else None
+            entry["crossOverPrNrmseVsReference"] = entry["radiosity-cross"]["vsReference"]["nrmse"] / entry["radiosity-pr"]["vsReference"]["nrmse"]
             quality[name] = entry
-            print("Q", name, {m: round(entry[m]["vsReference"]["nrmse"], 4) for m in METHODS}, flush=True)
+            print("Q", name, {m: (round(entry[m]["vsReference"]["nrmse"], 4), round(entry[m]["vsGatherHigh"]["nrmse"], 4)) for m in METHODS},
+                  {k: round(v["vsGatherHigh"]["nrmse"], 4) for k, v in entry["variants"].items()}, flush=True)
     rec["quality"] = quality
     print(write_record(rec))
 

@@ -1,6 +1,7 @@
 #include "app/Cli.h"
 
 #include "app/Options.h"
+#include "app/ProcessContext.h"
 #include "core/Log.h"
 #include "scene/SceneLoader.h"
 
@@ -30,6 +31,9 @@ int runCli(int argc, char** argv) {
     app.require_subcommand(1);
     std::string logLevel = "warn";
     app.add_option("--log-level", logLevel, "trace, debug, info, warn, error, off")->capture_default_str();
+    std::string gpu;
+    app.add_option("--gpu", gpu,
+                   "EGL device index for headless GL (`bounce info` lists them; overrides BOUNCE_EGL_DEVICE; docs/gpu.md)");
     CommandAction action;
     registerListCommand(app, action);
     registerInfoCommand(app, action);
@@ -43,7 +47,7 @@ int runCli(int argc, char** argv) {
     // CLI11 reports an unknown command as "a subcommand is required"; name it instead.
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--log-level") {
+        if (arg == "--log-level" || arg == "--gpu") {
             ++i;
             continue;
         }
@@ -73,6 +77,11 @@ int runCli(int argc, char** argv) {
         return 1;  // bad input is exit status 1 whatever CLI11's own code for it (README)
     }
     setLogLevel(logLevel);
+    const std::string command0 = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
+    if (!gpu.empty()) {
+        // Checked before any work: an index past the enumeration fails here, naming the device count.
+        if (auto r = selectGpu(gpu, "--gpu"); !r.ok()) return failCommand(command0, r.error().message);
+    }
     // Scene files' `settings` are checked against every technique's declared settings, whatever runs.
     setSceneSettingCheck(checkSceneSetting);
     if (!action) return failCommand("", "no command");

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <iostream>
 
 namespace bounce {
@@ -20,8 +21,23 @@ struct ListOptions {
 
 void printSettings(Configurable& target, const std::string& prefix) {
     for (const SettingDescription& d : describeSettings(target))
-        std::cout << fmt::format("    {}{:<18} {:<6} default {:<8} [{}]  {}\n", prefix, d.name, d.type, d.defaultValue,
-                                 d.range, d.doc);
+        std::cout << fmt::format("    {}{:<18} {:<6} default {:<8} [{}]  {}{}\n", prefix, d.name, d.type, d.defaultValue,
+                                 d.range, d.doc,
+                                 d.profileDefaults.empty() ? "" : " (default per device profile: " + d.profileDefaults + ")");
+}
+
+// The device profile decides a few defaults (core/DeviceProfile.h); `bounce list` makes no context, so
+// it names where the profile comes from and lists both values of such settings.
+void printProfileLine() {
+    const char* forced = std::getenv("BOUNCE_PROFILE");
+    if (forced && *forced) {
+        auto p = parseProfile(forced, "BOUNCE_PROFILE");
+        std::cout << (p.ok() ? fmt::format("device profile: {} (BOUNCE_PROFILE)\n", profileName(*p))
+                             : fmt::format("device profile: {}\n", p.error().message));
+    } else {
+        std::cout << "device profile: llvmpipe or gpu, from the GL renderer of the run's context (`bounce info` "
+                     "shows it; BOUNCE_PROFILE=llvmpipe|gpu overrides); defaults shown are llvmpipe's\n";
+    }
 }
 
 int runList(const ListOptions& o) {
@@ -30,6 +46,7 @@ int runList(const ListOptions& o) {
         if (o.names) {
             for (const TechniqueInfo& t : registeredTechniques()) std::cout << t.name << "\n";
         } else {
+            printProfileLine();
             std::cout << "techniques (bounce render --technique NAME --set NAME=VALUE):\n";
             for (const TechniqueInfo& t : registeredTechniques()) {
                 std::cout << fmt::format("  {:<16} {} [{}]\n", t.name, t.summary, t.reference);

@@ -79,7 +79,11 @@ void warnOneSidedSurfaces(const Scene& scene, glm::ivec2 size, uint32_t frame) {
 }
 
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
-                                const std::vector<std::string>& cliSettings) {
+                                const std::vector<std::string>& cliSettings, std::optional<DeviceProfile> profile) {
+    if (profile) {
+        applyProfileDefaults(technique, *profile);
+        applyProfileDefaults(renderSettings, *profile);
+    }
     std::map<std::string, std::string> renderer, own;
     for (const auto& [key, value] : scene.settings) route(key, value, technique.name(), renderer, own);
     BOUNCE_TRY(auto cli, parseAssignments(cliSettings, "--set"));

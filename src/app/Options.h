@@ -8,6 +8,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,12 @@ Expected<void> checkSceneSetting(const std::string& key, const std::string& valu
 // finding is one warning line naming the file and the object.
 void warnOneSidedSurfaces(const Scene& scene, glm::ivec2 size, uint32_t frame);
 
+// With a device profile (the context's, gl::GpuInfo::profile), the settings that declare per-profile
+// defaults (core/Settings.h) are first set to that profile's; without one they keep their initial
+// (llvmpipe) values. Commands validate the settings before creating a context and apply them again,
+// with the profile, once it exists.
 Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render::RenderSettings& renderSettings,
-                                const std::vector<std::string>& cliSettings);
+                                const std::vector<std::string>& cliSettings,
+                                std::optional<DeviceProfile> profile = std::nullopt);
 
 }  // namespace bounce

@@ -100,8 +100,12 @@ int runRender(const RenderOptions& o) {
         if (!read.ok()) return failCommand(cmd, "--camera-path " + read.error().message);
         path = std::move(*read);
     }
+    // A run whose timings are recorded (--stats) gets no debug context: synchronous KHR_debug output
+    // serialises the driver, and bench/ measures without it (docs/gpu.md "Measured runs"). The session
+    // applies the device profile's defaults under the scene's and --set values.
     auto session = RenderSession::create(std::make_shared<Scene>(std::move(*scene)), std::move(*technique), *size, o.settings,
-                                         static_cast<uint32_t>(o.startFrame));
+                                         static_cast<uint32_t>(o.startFrame),
+                                         o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
     if (!session.ok()) return failCommand(cmd, session.error().message);
     if (path) return renderCameraPath(o, *path, **session, *component);
 

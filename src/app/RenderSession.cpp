@@ -18,7 +18,7 @@ Expected<std::unique_ptr<Technique>> createRenderTechnique(const std::string& na
 
 Expected<std::unique_ptr<RenderSession>> RenderSession::create(std::shared_ptr<Scene> scene, std::unique_ptr<Technique> technique,
                                                                glm::ivec2 size, const std::vector<std::string>& settings,
-                                                               uint32_t firstFrame) {
+                                                               uint32_t firstFrame, const gl::ContextConfig& contextConfig) {
     // As `bounce reference` (PathTracer::create): a black image is not a render of anything.
     if (!scene->emitsLight())
         return makeError("scene '{}': no light source (no light with non-zero power and no object with an emissive material)",
@@ -27,7 +27,10 @@ Expected<std::unique_ptr<RenderSession>> RenderSession::create(std::shared_ptr<S
     BOUNCE_TRY_VOID(applyAllSettings(*scene, *technique, renderSettings, settings));
     warnOneSidedSurfaces(*scene, size, firstFrame);
     std::unique_ptr<RenderSession> session(new RenderSession());
-    BOUNCE_TRY(session->m_context, processContext());
+    BOUNCE_TRY(session->m_context, processContext(contextConfig));
+    // The device profile's defaults (core/DeviceProfile.h), then the scene's and the caller's values again.
+    renderSettings = render::RenderSettings{};
+    BOUNCE_TRY_VOID(applyAllSettings(*scene, *technique, renderSettings, settings, session->m_context->info().profile));
     BOUNCE_TRY(session->m_pipeline, Pipeline::create(*scene, std::move(technique), size, renderSettings));
     session->m_scene = std::move(scene);
     return session;

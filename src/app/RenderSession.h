@@ -24,11 +24,13 @@ Expected<std::unique_ptr<Technique>> createRenderTechnique(const std::string& na
 class RenderSession {
 public:
     // The scene must emit light; scene-file defaults, then `settings` ("name=value", as --set) are
-    // applied; a scene file's one-sided surfaces are warned about at `firstFrame`; the context is made
-    // (or reused) and the pipeline built. A technique that cannot render the scene fails here.
+    // checked; a scene file's one-sided surfaces are warned about at `firstFrame`; the context is made
+    // with `contextConfig` (or reused, app/ProcessContext.h); the settings are applied again over the
+    // device profile's defaults (core/DeviceProfile.h) and the pipeline built. A technique that cannot
+    // render the scene fails here.
     static Expected<std::unique_ptr<RenderSession>> create(std::shared_ptr<Scene> scene, std::unique_ptr<Technique> technique,
                                                            glm::ivec2 size, const std::vector<std::string>& settings,
-                                                           uint32_t firstFrame = 0);
+                                                           uint32_t firstFrame = 0, const gl::ContextConfig& contextConfig = {});
 
     // Frame `frame` at time frame / frameRate, or at `time` seconds (the animation held or moved by
     // hand); the camera is the scene's unless overridden.

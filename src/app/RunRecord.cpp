@@ -6,7 +6,15 @@
 namespace bounce {
 
 nlohmann::json gpuInfoJson(const gl::GpuInfo& info) {
-    return {{"vendor", info.vendor}, {"renderer", info.renderer}, {"version", info.version}, {"platform", info.platform}};
+    return {{"vendor", info.vendor},
+            {"renderer", info.renderer},
+            {"version", info.version},
+            {"platform", info.platform},
+            {"device", info.deviceIndex},
+            {"device_name", info.deviceName},
+            {"profile", std::string(profileName(info.profile))},
+            {"debug_context", info.debugContext},
+            {"portable_limits", info.portableLimits}};
 }
 
 nlohmann::json frameStatsJson(const FrameStats& s) {

@@ -5,6 +5,7 @@
 #include "app/StudyRun.h"
 #include "app/SweepJobs.h"
 #include "core/FileIo.h"
+#include "gpu/DeviceSelection.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -16,10 +17,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -41,6 +44,7 @@ struct SweepArgs {
     std::string studyFile;
     std::string out;
     int jobs = 1;
+    bool jobsGiven = false;  // --jobs on the command line; otherwise one worker per GPU (docs/gpu.md)
     bool list = false;
     std::string job;
     std::string emit;
@@ -104,8 +108,9 @@ private:
     bool m_drawn = false;
 };
 
-// Starts `bounce sweep STUDY --out OUT --job ID` with its output in OUT/logs/ID.log.
-Expected<pid_t> spawnJob(const Study& s, const Job& j) {
+// Starts `bounce sweep STUDY --out OUT --job ID` with its output in OUT/logs/ID.log, on EGL device
+// `device` (BOUNCE_EGL_DEVICE in its environment) when given.
+Expected<pid_t> spawnJob(const Study& s, const Job& j, std::optional<int> device) {
     const fs::path log = s.output / "logs" / logName(j.id);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -116,11 +121,27 @@ Expected<pid_t> spawnJob(const Study& s, const Job& j) {
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
+    std::vector<std::string> env;
+    for (char** e = environ; *e; ++e)
+        if (!device || std::string_view(*e).rfind("BOUNCE_EGL_DEVICE=", 0) != 0) env.emplace_back(*e);
+    if (device) env.push_back(fmt::format("BOUNCE_EGL_DEVICE={}", *device));
+    std::vector<char*> envp;
+    for (std::string& e : env) envp.push_back(e.data());
+    envp.push_back(nullptr);
     pid_t pid = 0;
-    const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+    const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) return makeError("cannot start {}: {}", exe, std::strerror(rc));
     return pid;
+}
+
+// The EGL device of each worker slot: round robin over the hardware devices (none on llvmpipe-only
+// machines: workers take the automatic choice, as before); --gpu / BOUNCE_EGL_DEVICE pins all of them.
+std::vector<std::optional<int>> workerDevices(int jobs) {
+    auto devices = gl::enumerateEglDevices();
+    auto request = gl::deviceRequestFromEnvironment();
+    if (!devices.ok() || !request.ok()) return std::vector<std::optional<int>>(static_cast<size_t>(jobs));
+    return gl::sweepWorkerDevices(*devices, *request, jobs);
 }
 
 int runLocal(const Study& s, const SweepArgs& args) {
@@ -143,6 +164,9 @@ int runLocal(const Study& s, const SweepArgs& args) {
         for (const Job* j : pending)
             if (j->stage == stage) queue.push_back(j);
         std::map<pid_t, const Job*> running;
+        std::map<pid_t, size_t> slotOf;  // worker slot of each running job
+        const std::vector<std::optional<int>> devices = workerDevices(args.jobs);
+        std::vector<bool> slotBusy(devices.size(), false);
         size_t next = 0;
         bar.update(done, 0, failed.size());
         while (next < queue.size() || !running.empty()) {
@@ -155,9 +179,12 @@ int runLocal(const Study& s, const SweepArgs& args) {
                     failed.insert(j->id);
                     continue;
                 }
-                auto pid = spawnJob(s, *j);
+                const size_t slot = static_cast<size_t>(std::find(slotBusy.begin(), slotBusy.end(), false) - slotBusy.begin());
+                auto pid = spawnJob(s, *j, devices[slot]);
                 if (!pid) return failCommand(kCommand, pid.error().message);
                 running[*pid] = j;
+                slotOf[*pid] = slot;
+                slotBusy[slot] = true;
             }
             bar.update(done, running.size(), failed.size());
             if (running.empty()) continue;
@@ -168,6 +195,8 @@ int runLocal(const Study& s, const SweepArgs& args) {
             if (it == running.end()) continue;
             const Job* j = it->second;
             running.erase(it);
+            slotBusy[slotOf[pid]] = false;
+            slotOf.erase(pid);
             ++done;
             if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
                 failed.insert(j->id);
@@ -270,9 +299,23 @@ int emit(const Study& s, const SweepArgs& args) {
     return 0;
 }
 
+int runSweepWith(const SweepArgs& args);
+
 int runSweep(const SweepArgs& args) {
     auto fail = [](const std::string& m) { return failCommand(kCommand, m); };
     if (args.jobs < 1) return fail(fmt::format("--jobs {}: at least one", args.jobs));
+    SweepArgs a = args;
+    if (!a.jobsGiven && a.job.empty() && !a.list) {
+        // One worker per hardware GPU by default; 1 where there is none (llvmpipe: unchanged).
+        auto devices = gl::enumerateEglDevices();
+        auto request = gl::deviceRequestFromEnvironment();
+        if (devices.ok() && request.ok()) a.jobs = gl::defaultSweepJobs(*devices, *request);
+    }
+    return runSweepWith(a);
+}
+
+int runSweepWith(const SweepArgs& args) {
+    auto fail = [](const std::string& m) { return failCommand(kCommand, m); };
     if (!args.emit.empty() && args.emit != "parallel" && args.emit != "slurm")
         return fail(fmt::format("--emit: unknown scheduler '{}' (known: parallel, slurm)", args.emit));
     if (static_cast<int>(args.list) + static_cast<int>(!args.job.empty()) + static_cast<int>(!args.emit.empty()) > 1)
@@ -308,12 +351,17 @@ void registerSweepCommand(CLI::App& root, CommandAction& action) {
                                                   "references, compares and temporal metrics (docs/studies.md)");
     cmd->add_option("STUDY", args->studyFile, "Study file (.json)")->required();
     cmd->add_option("--out", args->out, "Output folder (default: the study's \"output\", beside the study file)");
-    cmd->add_option("--jobs", args->jobs, "Jobs run at once on this machine (each uses every core)")->capture_default_str();
+    cmd->add_option("--jobs", args->jobs, "Jobs run at once on this machine (each uses every core); default: one per "
+                                          "hardware GPU, spread over them (BOUNCE_EGL_DEVICE per worker), 1 without a GPU")
+        ->capture_default_str();
     cmd->add_flag("--list", args->list, "List the jobs (stage, kind, finished/pending, id) and exit");
     cmd->add_option("--job", args->job, "Run one job by id (what GNU parallel and Slurm tasks call)");
     cmd->add_option("--emit", args->emit, "Write job lists for a scheduler instead of running: parallel or slurm");
     cmd->add_flag("--progress", args->progress, "Draw the progress bar even when stderr is not a terminal");
-    cmd->callback([&action, args] { action = [args] { return runSweep(*args); }; });
+    cmd->callback([&action, args, cmd] {
+        args->jobsGiven = cmd->count("--jobs") > 0;
+        action = [args] { return runSweep(*args); };
+    });
 }
 
 }  // namespace bounce

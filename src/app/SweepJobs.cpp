@@ -66,8 +66,9 @@ Expected<void> writeRecord(const Study& study, const Job& job, const json& recor
     return writeTextFileAtomic(recordPath(study, job), record.dump(2) + "\n");
 }
 
-// The process's headless context, made on first use (reference and compare jobs need none).
-Expected<gl::Context*> context() { return processContext(); }
+// The process's headless context (app/ProcessContext.h), made on first use (reference and compare jobs
+// need none). Render and temporal jobs record timings: no debug context (docs/gpu.md "Measured runs").
+Expected<gl::Context*> context() { return processContext(gl::measuredContextConfig()); }
 
 struct Loaded {
     Scene scene;
@@ -86,8 +87,8 @@ Expected<std::unique_ptr<Loaded>> load(const Study& study, const Job& job) {
     BOUNCE_TRY(auto technique, createTechnique(variant.technique));
     std::vector<std::string> settings;
     for (const auto& [k, v] : variant.settings) settings.push_back(k + "=" + v);
-    BOUNCE_TRY_VOID(applyAllSettings(out->scene, *technique, out->renderSettings, settings));
-    BOUNCE_TRY_VOID(context());
+    BOUNCE_TRY(gl::Context* const ctx, context());
+    BOUNCE_TRY_VOID(applyAllSettings(out->scene, *technique, out->renderSettings, settings, ctx->info().profile));
     auto pipeline = Pipeline::create(out->scene, std::move(technique), study.size, out->renderSettings);
     if (!pipeline) out->refusal = pipeline.error().message;
     else out->pipeline = std::move(*pipeline);

@@ -156,7 +156,10 @@ Expected<std::unique_ptr<Technique>> makeTechnique(const Scene& scene, const std
                                                    const std::map<std::string, std::string>& values) {
     BOUNCE_TRY(auto technique, createTechnique(name));
     render::RenderSettings ignored;  // the scene's renderer defaults were applied once at start
-    BOUNCE_TRY_VOID(applyAllSettings(scene, *technique, ignored, {}));
+    // With a context, the device profile's defaults first (core/DeviceProfile.h).
+    const std::optional<DeviceProfile> profile =
+        gl::Context::current() ? std::optional(gl::Context::current()->info().profile) : std::nullopt;
+    BOUNCE_TRY_VOID(applyAllSettings(scene, *technique, ignored, {}, profile));
     BOUNCE_TRY_VOID(applySettings(*technique, values, fmt::format("technique '{}'", name)));
     return technique;
 }
@@ -246,8 +249,8 @@ int runView(const ViewOptions& o) {
     // --set viewer.NAME goes to the viewer's settings, the rest to the technique and renderer.
     ViewerSettings viewer;
     std::vector<std::string> techniqueSettings;
+    std::map<std::string, std::string> viewerValues;
     {
-        std::map<std::string, std::string> viewerValues;
         for (const std::string& s : o.settings) {
             if (s.rfind("viewer.", 0) == 0) {
                 auto kv = parseAssignment(s.substr(7));
@@ -323,6 +326,19 @@ int runView(const ViewOptions& o) {
     auto context = gl::Context::createWindowed(config);
     if (!context.ok()) return failCommand(cmd, context.error().message);
     GLFWwindow* window = (*context)->window();
+    // The settings again, now over the device profile's defaults (core/DeviceProfile.h).
+    applyProfileDefaults(viewer, (*context)->info().profile);
+    if (auto r = applySettings(viewer, viewerValues, "viewer"); !r.ok()) return failCommand(cmd, "--set " + r.error().message);
+    for (Side* side : {&a, &b}) {
+        auto t = createTechnique(side->technique);
+        render::RenderSettings ignored;
+        const bool isA = side == &a;
+        if (auto r = applyAllSettings(*scene, **t, isA ? renderSettings : ignored, isA ? techniqueSettings : o.bSettings,
+                                      (*context)->info().profile);
+            !r.ok())
+            return failCommand(cmd, r.error().message);
+        side->values = currentValues(**t);
+    }
 
     // app/display.frag for float textures, unsigned-integer arrays (ID views) and multisampled arrays.
     auto buildDisplay = [](const char* name, std::vector<std::pair<std::string, std::string>> defines) {
@@ -837,6 +853,9 @@ int runView(const ViewOptions& o) {
             if (t.ok()) {
                 auto p = Pipeline::create(*scene, std::move(*t), renderSize, renderSettings);
                 if (p.ok()) {
+                    // The frame loop shows times, it does not record them: read them a frame late and
+                    // let the CPU queue the next frame while the GPU works (docs/gpu.md "Measured runs").
+                    (*p)->setLateTimings(true);
                     side->pipeline = std::move(*p);
                     side->error.clear();
                 } else {
@@ -872,7 +891,13 @@ int runView(const ViewOptions& o) {
         // Adaptive internal size: shrink by a quarter while over budget, grow back below 40 % of it;
         // a cool-down of a few frames lets the new size show its time before the next change.
         if (!fixedRenderSize && viewer.frameBudgetMs > 0.0f && a.pipeline && cooldown-- <= 0) {
-            const double ms = a.stats.cpuMilliseconds + (showsB() ? b.stats.cpuMilliseconds : 0.0);
+            // With late timings a frame's cost is its submission (CPU) or the GPU's time for the previous
+            // frame, whichever is longer.
+            auto frameMs = [](const FrameStats& st) {
+                const double gpu = st.passes.empty() ? 0.0 : st.passes.front().milliseconds;
+                return std::max(st.cpuMilliseconds, gpu);
+            };
+            const double ms = frameMs(a.stats) + (showsB() ? frameMs(b.stats) : 0.0);
             if (ms > viewer.frameBudgetMs && scale > viewer.minScale) {
                 scale = std::max(viewer.minScale, scale * 0.75f);
                 cooldown = 5;
@@ -1217,7 +1242,7 @@ int runView(const ViewOptions& o) {
                 }
                 ImGui::Text("%-24s %8.3f ms", p.name.c_str(), p.milliseconds);
             }
-            ImGui::Text("%-24s %8.3f ms", "cpu (frame, with wait)", a.stats.cpuMilliseconds);
+            ImGui::Text("%-24s %8.3f ms", "cpu (frame submission)", a.stats.cpuMilliseconds);
             if (showsB() && bSource == BSource::Technique)
                 ImGui::Text("B %-22s %8.3f ms", "frame (cpu)", b.stats.cpuMilliseconds);
         }

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <set>
+#include <utility>
 
 namespace bounce {
 
@@ -17,18 +18,32 @@ std::string formatFloat(float v) { return fmt::format("{:g}", v); }
 class Describer final : public SettingsVisitor {
 public:
     std::vector<SettingDescription> out;
+    std::string pending;  // the per-profile defaults of the next field
+    void profileDefaults(std::string_view, int&, const PerProfile<int>& d) override {
+        pending = fmt::format("llvmpipe {}, gpu {}", d.llvmpipe, d.gpu);
+    }
+    void profileDefaults(std::string_view, float&, const PerProfile<float>& d) override {
+        pending = fmt::format("llvmpipe {}, gpu {}", formatFloat(d.llvmpipe), formatFloat(d.gpu));
+    }
+    void profileDefaults(std::string_view, bool&, const PerProfile<bool>& d) override {
+        pending = fmt::format("llvmpipe {}, gpu {}", d.llvmpipe, d.gpu);
+    }
+    void push(SettingDescription d) {
+        d.profileDefaults = std::exchange(pending, {});
+        out.push_back(std::move(d));
+    }
     void field(std::string_view n, bool& v, std::string_view doc) override {
-        out.push_back({std::string(n), "bool", v ? "true" : "false", std::string(doc), "true|false"});
+        push({std::string(n), "bool", v ? "true" : "false", std::string(doc), "true|false"});
     }
     void field(std::string_view n, int& v, std::string_view doc, int lo, int hi) override {
-        out.push_back({std::string(n), "int", std::to_string(v), std::string(doc), fmt::format("{}..{}", lo, hi)});
+        push({std::string(n), "int", std::to_string(v), std::string(doc), fmt::format("{}..{}", lo, hi)});
     }
     void field(std::string_view n, float& v, std::string_view doc, float lo, float hi) override {
-        out.push_back({std::string(n), "float", formatFloat(v), std::string(doc),
+        push({std::string(n), "float", formatFloat(v), std::string(doc),
                        fmt::format("{}..{}", formatFloat(lo), formatFloat(hi))});
     }
     void field(std::string_view n, std::string& v, std::string_view doc, std::span<const std::string_view> c) override {
-        out.push_back({std::string(n), "choice", v, std::string(doc), fmt::format("{}", fmt::join(c, "|"))});
+        push({std::string(n), "choice", v, std::string(doc), fmt::format("{}", fmt::join(c, "|"))});
     }
 };
 
@@ -93,6 +108,23 @@ private:
     std::string_view m_context;
 };
 
+class ProfileApplier final : public SettingsVisitor {
+public:
+    explicit ProfileApplier(DeviceProfile p) : m_profile(p) {}
+    void field(std::string_view, bool&, std::string_view) override {}
+    void field(std::string_view, int&, std::string_view, int, int) override {}
+    void field(std::string_view, float&, std::string_view, float, float) override {}
+    void field(std::string_view, std::string&, std::string_view, std::span<const std::string_view>) override {}
+
+protected:
+    void profileDefaults(std::string_view, int& v, const PerProfile<int>& d) override { v = d[m_profile]; }
+    void profileDefaults(std::string_view, float& v, const PerProfile<float>& d) override { v = d[m_profile]; }
+    void profileDefaults(std::string_view, bool& v, const PerProfile<bool>& d) override { v = d[m_profile]; }
+
+private:
+    DeviceProfile m_profile;
+};
+
 class JsonWriter final : public SettingsVisitor {
 public:
     nlohmann::json out = nlohmann::json::object();
@@ -122,6 +154,11 @@ Expected<void> applySettings(Configurable& target, const std::map<std::string, s
             return makeError("{}: unknown setting '{}' (known: {})", context, name,
                              a.known.empty() ? std::string("none") : fmt::format("{}", fmt::join(a.known, ", ")));
     return {};
+}
+
+void applyProfileDefaults(Configurable& target, DeviceProfile profile) {
+    ProfileApplier a(profile);
+    target.visitSettings(a);
 }
 
 nlohmann::json settingsToJson(Configurable& target) {

@@ -10,6 +10,7 @@
 #define BINDING_UBO_PASS 3     // per-pass parameters owned by a technique
 #define BINDING_UBO_VOXELS 4   // ScreenVoxelsGpu: the screen-space voxel grid (techniques/screen_voxels)
 #define BINDING_UBO_VPL_WINDOW 5  // a window of a VPL cache read as a uniform block (techniques/nichols/vpl_window.glsl)
+#define BINDING_UBO_VOXELS_OUTER 6  // ScreenVoxelsGpu of a second grid beyond the camera's frustum (area-light, march.glsl SV_OUTER_GRID)
 
 // Shader storage buffers
 #define BINDING_SSBO_OBJECTS 0    // ObjectGpu[]: worldFromObject, normal matrix, material index
@@ -57,6 +58,7 @@
 // Screen-space binary voxels (techniques/screen_voxels): usampler2DArray, one layer per 128 bits. Unit 16
 // is also vct's; the two are never bound in one pass.
 #define BINDING_TEX_VOXELS 16
+#define BINDING_TEX_VOXELS_OUTER 17  // the second grid (march.glsl SV_OUTER_GRID); vct's unit too, never bound in one pass with it
 
 // Image units
 #define BINDING_IMG0 0

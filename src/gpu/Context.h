@@ -1,7 +1,12 @@
 #pragma once
 // OpenGL 4.5 core contexts. Headless through EGL (the device platform on a real GPU, Mesa's
-// surfaceless platform on llvmpipe), windowed through GLFW. Both install KHR_debug output.
+// surfaceless platform on llvmpipe; gpu/DeviceSelection.h picks the device), windowed through GLFW.
+// Both install synchronous KHR_debug output unless ContextConfig::debugOutput is off (measured runs:
+// `render --stats`, sweeps and benchmarks, whose timings a synchronous debug context would distort).
+// Every context enables seamless cube-map filtering (GL_TEXTURE_CUBE_MAP_SEAMLESS: point-light
+// distance maps are filtered across face edges alike on every vendor).
 #include "core/Error.h"
+#include "gpu/GpuInfo.h"
 #include "gpu/Objects.h"
 
 #include <glm/vec2.hpp>
@@ -14,28 +19,16 @@ struct GLFWwindow;
 
 namespace bounce::gl {
 
-struct GpuInfo {
-    std::string vendor, renderer, version, glslVersion;
-    std::string platform;  // "egl-device", "egl-surfaceless", "glfw"
-    int maxTextureSize = 0, max3dTextureSize = 0, maxArrayLayers = 0, maxCubeMapSize = 0;
-    int maxColorAttachments = 0, maxDrawBuffers = 0;
-    int maxUniformBlockSize = 0, maxShaderStorageBlockSize = 0;
-    int maxComputeInvocations = 0;
-    int maxComputeWorkGroupSize[3] = {0, 0, 0};
-    int maxComputeWorkGroupCount[3] = {0, 0, 0};
-    int maxGeometryOutputVertices = 0, maxGeometryInvocations = 0;
-    int maxTransformFeedbackBuffers = 0;
-    int maxImageUnits = 0, maxCombinedTextureUnits = 0;
-    int timerQueryBits = 0;
-    std::vector<std::pair<std::string, bool>> extensions;  // extensions techniques care about
-};
-
 struct ContextConfig {
     glm::ivec2 windowSize{1280, 720};  // windowed only
     std::string title = "bounce";
-    bool debugOutput = true;
+    bool debugOutput = true;  // a debug context with synchronous KHR_debug output (tests, the viewer)
     bool visible = true;
 };
+
+// The context configuration of a run whose timings are recorded (`render --stats`, sweep jobs): no
+// debug context, so the driver may run its own threads and the times compare with bench/.
+ContextConfig measuredContextConfig();
 
 class Context {
 public:
@@ -43,7 +36,9 @@ public:
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
-    // EGL headless context. BOUNCE_EGL_PLATFORM=device|surfaceless forces a platform.
+    // EGL headless context on the device gpu/DeviceSelection.h chooses (--gpu, BOUNCE_EGL_DEVICE,
+    // BOUNCE_EGL_PLATFORM=device|surfaceless). Warns (one line) when the renderer is software although
+    // the machine has GPU device nodes.
     static Expected<std::unique_ptr<Context>> createHeadless(const ContextConfig& config = {});
     static Expected<std::unique_ptr<Context>> createWindowed(const ContextConfig& config = {});
 
@@ -64,8 +59,10 @@ public:
 
 protected:
     Context() = default;
-    // Called by implementations once the context is current.
-    void initialise(const ContextConfig& config, std::string platform);
+    // Called by implementations once the context is current: reads GpuInfo, decides the device
+    // profile (BOUNCE_PROFILE may override), clamps the limits under BOUNCE_PORTABLE_LIMITS=1.
+    Expected<void> initialise(const ContextConfig& config, std::string platform, int deviceIndex = -1,
+                              std::string deviceName = {});
     // Deletes the context's own GL objects; implementations call it while still current.
     void releaseObjects() { m_emptyVao = VertexArray(); }
 
@@ -76,5 +73,10 @@ private:
 
 // Formats GpuInfo for `bounce info` and run records.
 std::string formatInfo(const GpuInfo& info);
+
+// The device profile of the current context (llvmpipe without one).
+DeviceProfile currentProfile();
+// True when BOUNCE_PORTABLE_LIMITS is set to 1 (the portable-limits mode, gpu/PortableLimits.h).
+bool portableLimitsMode();
 
 }  // namespace bounce::gl

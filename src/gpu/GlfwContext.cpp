@@ -49,7 +49,7 @@ Expected<std::unique_ptr<Context>> Context::createWindowed(const ContextConfig& 
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
     auto ctx = std::make_unique<GlfwContext>(window);
-    ctx->initialise(config, "glfw");
+    BOUNCE_TRY_VOID(ctx->initialise(config, "glfw"));
     return std::unique_ptr<Context>(std::move(ctx));
 }
 

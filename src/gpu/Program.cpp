@@ -3,6 +3,7 @@
 #include "core/Check.h"
 #include "core/FileIo.h"
 #include "gpu/Objects.h"
+#include "gpu/ProgramChecks.h"
 
 #include <glm/gtc/type_ptr.hpp>
 #include <spdlog/spdlog.h>
@@ -125,10 +126,12 @@ Expected<Program> Program::build(const ProgramDesc& desc) {
     p.m_handle = Handle<ProgramTraits>(program);
     p.m_label = desc.label;
     std::vector<Handle<ShaderTraits>> shaders;
+    std::vector<StageSource> sources;
     for (const auto& [stage, file] : desc.stages) {
         std::vector<LineOrigin> origins;
         auto source = assemble(file, desc.defines, origins);
         if (!source.ok()) return makeError("program '{}': {}", desc.label, source.error().message);
+        sources.push_back({stage, file, *source});
         GLuint shader = glCreateShader(stage);
         shaders.emplace_back(shader);
         const char* text = source->c_str();
@@ -151,6 +154,7 @@ Expected<Program> Program::build(const ProgramDesc& desc) {
         for (const auto& v : desc.feedbackVaryings) names.push_back(v.c_str());
         glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
     }
+    dumpShaderSources(desc.label, sources);
     glLinkProgram(program);
     for (auto& s : shaders) glDetachShader(program, s.id());
     GLint linked = GL_FALSE;
@@ -163,6 +167,8 @@ Expected<Program> Program::build(const ProgramDesc& desc) {
         while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
         return makeError("program '{}' failed to link: {}", desc.label, log);
     }
+    // Past a portable limit (gpu/PortableLimits.h) under BOUNCE_PORTABLE_LIMITS=1 this fails as a link would.
+    BOUNCE_TRY_VOID(auditLinkedProgram(desc.label, program, sources));
     gl::label(GL_PROGRAM, program, desc.label);
     return p;
 }

@@ -216,9 +216,11 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
                     e.fbo.setDrawBuffers(1);
                     BOUNCE_CHECK(e.fbo.complete(), "cube shadow framebuffer");
                     e.fbo.bind();
-                    const float clear = 1.0f;
-                    glClearNamedFramebufferfv(e.fbo.id(), GL_COLOR, 0, &clear);
-                    glClearNamedFramebufferfv(e.fbo.id(), GL_DEPTH, 0, &clear);
+                    // GL_COLOR clears read four floats whatever the format (issue 29 #24); depth one.
+                    const float clearDistance[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+                    const float clearDepth = 1.0f;
+                    glClearNamedFramebufferfv(e.fbo.id(), GL_COLOR, 0, clearDistance);
+                    glClearNamedFramebufferfv(e.fbo.id(), GL_DEPTH, 0, &clearDepth);
                     drawer.draw(cubeFaceView(origin, face, nearPlane, farPlane, size));
                 }
             } else {

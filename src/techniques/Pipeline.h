@@ -17,8 +17,9 @@ std::string_view componentName(Component c);
 struct FrameStats {
     uint32_t frame = 0;
     float time = 0.0f;               // seconds
-    double cpuMilliseconds = 0.0;    // wall time of renderFrame including the GPU wait
+    double cpuMilliseconds = 0.0;    // wall time of renderFrame, including the GPU wait unless timings are late
     std::vector<gl::PassTime> passes;  // "frame" first
+    bool passesLate = false;           // passes are the previous renderFrame's (setLateTimings)
     Counters counters;
     gl::LiveResources resources;  // the GL objects and storage bytes live after the frame (gpu/Objects.h)
     uint64_t residentBytes = 0;   // the process's resident set size after the frame (core/Resources.h)
@@ -41,6 +42,12 @@ public:
     // The shared views (outputs, G-buffer channels) followed by the technique's (Technique::debugViews).
     std::vector<DebugView> debugViews() const;
     Image readback(Component c) const;
+
+    // Timings one frame late (the viewer; gl::GpuTimers::Latency::OneFrame): renderFrame no longer
+    // waits for the GPU at its end, and FrameStats::passes are the previous frame's. Measured runs
+    // (`render --stats`, sweeps, benchmarks) keep the default: each frame waits and holds its own times.
+    void setLateTimings(bool late);
+    bool lateTimings() const { return m_lateTimings; }
 
     Technique& technique() { return *m_technique; }
     const render::RenderSettings& renderSettings() const { return m_settings; }
@@ -65,6 +72,7 @@ private:
     gl::Framebuffer m_composeFbo;
     gl::Buffer m_frameUbo;
     gl::GpuTimers m_timers;
+    bool m_lateTimings = false;
 };
 
 // Linear RGB of an RGBA32F texture, top row first.

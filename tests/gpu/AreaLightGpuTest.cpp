@@ -12,6 +12,8 @@
 #include "techniques/Registry.h"
 #include "techniques/area_light/AreaLightTechnique.h"
 
+#include <bit>
+
 using namespace bounce;
 using namespace bounce::nicholstest;
 
@@ -65,6 +67,34 @@ std::pair<Image, Image> receiversOnly(const Image& test, const Image& ref, float
     return {a, b};
 }
 
+// Zeroes, in both images, the pixels whose G-buffer surface (from `p`, rendered at the images' size)
+// lies on one of the scene's area lights, and their neighbours: for a textured light whose dark texels
+// the luminance cut of receiversOnly would keep.
+std::pair<Image, Image> withoutEmitters(const Image& test, const Image& ref, Pipeline& p, const Scene& scene) {
+    const Image positions = readTexture(p.gbuffer().position());
+    const auto onLight = [&](int x, int y) {
+        const glm::vec3 q = positions.at(x, y);
+        for (const Light& l : scene.lights) {
+            if (l.type != LightType::Area) continue;
+            const glm::vec3 d = q - l.position;
+            const float size = std::max(glm::length(l.edgeU), glm::length(l.edgeV));
+            const float u = glm::dot(d, l.edgeU) / glm::dot(l.edgeU, l.edgeU), v = glm::dot(d, l.edgeV) / glm::dot(l.edgeV, l.edgeV);
+            if (std::abs(glm::dot(d, l.areaNormal())) < 1e-3f * size && std::abs(u) <= 0.51f && std::abs(v) <= 0.51f) return true;
+        }
+        return false;
+    };
+    Image a = test, b = ref;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            bool near = false;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    near = near || onLight(std::clamp(x + dx, 0, a.width() - 1), std::clamp(y + dy, 0, a.height() - 1));
+            if (near) a.at(x, y) = b.at(x, y) = glm::vec3(0.0f);
+        }
+    return {a, b};
+}
+
 double relMse(const Image& a, const Image& b) {
     auto m = compareImages(a, b);
     EXPECT_TRUE(m.ok());
@@ -100,31 +130,52 @@ Scene planeWithOccluder(const Light& light, float occluderHeight, float occluder
 }  // namespace
 
 TEST_F(AreaLightGpuTest, MatchesThePathTracersDirectLightOnCornellBoxArea) {
-    // Like for like: area-light computes direct light only, which is `bounce reference --bounces 0`.
+    // Like for like: area-light computes direct light only, which is `bounce reference --bounces 0`;
+    // beside it the shared `direct` pass, whose area light is shadowed from its centre (hard shadows).
     auto scene = loadScene("cornell-box-area");
     ASSERT_TRUE(scene.ok());
-    constexpr int kSize = 96;
+    constexpr int kSize = 128;
     const Image ref = directReference(*scene, kSize, 512);
     const float emitted = luminance(scene->lights[0].radiance);
     const AreaRun run = renderAreaLight(*scene, {}, kSize);
     const AreaRun unshadowed = renderAreaLight(*scene, {{"visibility", "none"}}, kSize);
+    auto hard = makePipeline(*scene, "direct", {}, kSize);
+    hard->renderFrame(0);
+    const Image hardImage = hard->readback(Component::Direct);
     auto [test, reference] = receiversOnly(run.direct, ref, emitted);
     auto [open, reference2] = receiversOnly(unshadowed.direct, ref, emitted);
+    auto [hardTest, reference3] = receiversOnly(hardImage, ref, emitted);
     const double error = relMse(test, reference), errorUnshadowed = relMse(open, reference2);
+    const double errorHard = relMse(hardTest, reference3);
+    const double wholeError = relMse(run.direct, ref), wholeErrorHard = relMse(hardImage, ref);
     RecordProperty("relMse", std::to_string(error));
     RecordProperty("relMseWithoutVisibility", std::to_string(errorUnshadowed));
-    // Measured 0.018 at 128^2 (docs/techniques/area-light.md): the voxel grid's 128^2 x 128 resolution
-    // over-occludes rays that pass within a voxel of a surface and the 256 VPLs band the penumbrae;
-    // 0.04 leaves room for the path tracer's noise at 512 spp and llvmpipe rounding, and is still a
-    // third of the error without visibility.
-    EXPECT_LT(error, 0.04);
-    EXPECT_LT(error, errorUnshadowed / 3.0);
-    // Energy over the receivers: the voxels' over-occlusion of rays that graze a surface costs 6 %
-    // at 128^2 x 128 (measured; 1 % at 512^2 x 512, docs); 0.1 fails if visibility or a VPL's
-    // radiance is lost wholesale (halving the VPLs gives 0.5, no visibility 1.08).
+    RecordProperty("relMseHardShadows", std::to_string(errorHard));
+    RecordProperty("relMseWholeImage", std::to_string(wholeError));
+    RecordProperty("relMseWholeImageHardShadows", std::to_string(wholeErrorHard));
+    // Over the receivers: measured 0.0057 (0.0119 before the voxelization set each triangle's exact
+    // depth span per pixel, the march took 64 steps and the colour threshold compared display colours),
+    // against 0.0121 for the hard shadows and 0.23 without visibility. What is left is mostly the
+    // pixels' edges (the reference filters them over the pixel, the G-buffer samples their centres: a
+    // perfect point-sampled image scores about 0.003 on the receivers here) and the tall block's
+    // penumbra on the red wall, over-occluded by the depth span of its grazing side face in a voxel
+    // column. 0.01 leaves room for the path tracer's noise at 512 spp.
+    EXPECT_LT(error, 0.01);
+    EXPECT_LT(error, errorUnshadowed / 10.0);
+    // The whole image, the light included (the bound: at most half the hard-shadow pass's
+    // relMSE): measured 0.0060 against 0.0153 (the light box-filtered over its pixels as the reference
+    // does; the G-buffer's point-sampled light costs `direct` about 0.003).
+    EXPECT_LT(wholeError, 0.5 * wholeErrorHard);
+    // Energy over the receivers: measured 0.990 (the penumbra above); 0.04 fails if visibility or a
+    // VPL's radiance is lost wholesale (halving the VPLs gives 0.5, no visibility 1.08).
     const double ratio = totalRadiance(test) / totalRadiance(reference);
     RecordProperty("energyRatio", std::to_string(ratio));
-    EXPECT_NEAR(ratio, 0.97, 0.05);
+    EXPECT_NEAR(ratio, 0.99, 0.04);
+    // The whole image's energy, 70 % of which is the light's own pixels: measured 0.99 (0.92 for the
+    // point-sampled light, 4 of its 4.5 pixel rows at 128^2).
+    const double wholeRatio = totalRadiance(run.direct) / totalRadiance(ref);
+    RecordProperty("energyRatioWholeImage", std::to_string(wholeRatio));
+    EXPECT_NEAR(wholeRatio, 1.0, 0.03);
     EXPECT_DOUBLE_EQ(run.counters.at("vpls"), 256.0);
 }
 
@@ -141,6 +192,42 @@ TEST_F(AreaLightGpuTest, VplSumWithoutVisibilityMatchesTheExactPolygonIrradiance
     const AreaRun run = renderAreaLight(scene, {{"visibility", "none"}}, kSize);
     EXPECT_LT(relMse(run.direct, direct), 1e-3);
     EXPECT_NEAR(totalRadiance(run.direct) / totalRadiance(direct), 1.0, 0.01);
+}
+
+TEST_F(AreaLightGpuTest, NearFieldStaysBelowAFullHemisphereOfTheLight) {
+    // The plane 5 mm under the 1 m panel (0.08 of a VPL cell's side): no receiver can get more than
+    // pi L, its whole hemisphere filled with the light, and under the panel the path tracer gives pi L
+    // to 1 %. At 64^2 over the 4 m view the pixel centres under the panel lie exactly under VPLs,
+    // where Eq. 5.2's point form A cos cos / r^2 gives 156 L for that VPL alone; the bound
+    // (r^2 >= A / pi, area_common.glsl) gives pi L cos cos. Interleaving is off: within a VPL spacing
+    // of the light each VPL lights only the cells right under it, so the 2x2 subsets of neighbouring
+    // cells are not interchangeable and the reconstruction reads twice the light (recorded below;
+    // docs/techniques/area-light.md: no built-in scene has a receiver that close).
+    constexpr float kRadiance = 4.0f, kHeight = 0.005f;
+    const Scene scene = gputest::planeScene(ceilingLight(kHeight, 1.0f, glm::vec3(kRadiance)), Projection::Orthographic);
+    constexpr int kSize = 64;
+    const AreaRun run = renderAreaLight(scene, {{"visibility", "none"}, {"interleave", "false"}}, kSize);
+    const AreaRun interleaved = renderAreaLight(scene, {{"visibility", "none"}}, kSize);
+    const Image ref = directReference(scene, kSize, 256);
+    // Radiance = albedo / pi E on the grey plane: E / (pi L) = radiance / (albedo L).
+    const auto peakOf = [&](const Image& img) {
+        float peak = 0.0f;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) peak = std::max(peak, luminance(img.at(x, y)) / (gputest::kPlaneAlbedo * kRadiance));
+        return peak;
+    };
+    const float peak = peakOf(run.direct);
+    const double error = relMse(run.direct, ref);
+    RecordProperty("peakOverPiL", std::to_string(peak));
+    RecordProperty("peakOverPiLInterleaved", std::to_string(peakOf(interleaved.direct)));
+    RecordProperty("relMse", std::to_string(error));
+    // Measured 1.012 with the bound (the VPL above plus its neighbours' grazing light); the point form
+    // gave 50 (99 interleaved). 1.1 allows the neighbours' light at this height, not a second VPL's worth.
+    EXPECT_LT(peak, 1.1f);
+    EXPECT_GT(peak, 0.9f);
+    // Measured 0.0047 against the path tracer (the panel's edge: its light falls from pi L to 0 within
+    // a pixel); 151 with the point form. 0.02 leaves room for the path tracer's noise at 256 spp.
+    EXPECT_LT(error, 0.02);
 }
 
 TEST_F(AreaLightGpuTest, SoftShadowPenumbraMatchesTheReferenceWhereTheHardShadowCannot) {
@@ -180,6 +267,51 @@ TEST_F(AreaLightGpuTest, SoftShadowPenumbraMatchesTheReferenceWhereTheHardShadow
     EXPECT_GT(errorHard, 2.0 * errorSoft);
 }
 
+TEST_F(AreaLightGpuTest, PartlyHiddenLightGivesThePartItSees) {
+    // A 2 m panel 1 m above the plane, over x in [0, 2]; the orthographic camera sees x, z in [-1, 1]
+    // only. A slab 0.5 m up over x in [1.1, 2.5], beside the view, hides the panel's far part from the
+    // plane's visible right half: a receiver at x = 0.8 sees about half of the panel. Each VPL has its
+    // own visibility (§5.3.3), so such a receiver must get the light of the part it sees. The slab is
+    // outside the camera's frustum and so outside the screen-space voxels (the thesis's grid holds what
+    // the camera sees); area-light's second grid along the light (voxelOutside) holds it.
+    Light light = ceilingLight(1.0f, 2.0f, glm::vec3(2.0f));
+    light.position.x = 1.0f;
+    Scene scene = gputest::planeScene(light, Projection::Orthographic);
+    scene.camera.orthoHeight = 2.0f;
+    MeshBuilder b("slab");
+    b.axisBox({1.1f, 0.5f, -1.5f}, {2.5f, 0.52f, 1.5f});
+    scene.meshes.push_back(b.take());
+    Object o;
+    o.name = "slab";
+    o.mesh = static_cast<uint32_t>(scene.meshes.size() - 1);
+    scene.objects.push_back(o);
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    constexpr int kSize = 64;
+    const Image ref = directReference(scene, kSize, 512);
+    const AreaRun run = renderAreaLight(scene, {}, kSize);
+    const AreaRun open = renderAreaLight(scene, {{"visibility", "none"}}, kSize);
+    const AreaRun screenOnly = renderAreaLight(scene, {{"voxelOutside", "false"}}, kSize);
+    double error = 0.0, errorScreenOnly = 0.0, seen = 0.0;
+    int partial = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const float lit = luminance(open.direct.at(x, y)), r = luminance(ref.at(x, y));
+            if (!(lit > 0.0f) || r > 0.8f * lit || r < 0.2f * lit) continue;  // the partly hidden receivers
+            ++partial;
+            seen += r / lit;
+            error += std::abs(luminance(run.direct.at(x, y)) - r) / r;
+            errorScreenOnly += std::abs(luminance(screenOnly.direct.at(x, y)) - r) / r;
+        }
+    ASSERT_GT(partial, 200);
+    error /= partial;
+    errorScreenOnly /= partial;
+    RecordProperty("partlyHiddenPixels", std::to_string(partial));
+    RecordProperty("meanFractionSeen", std::to_string(seen / partial));
+    RecordProperty("meanRelativeError", std::to_string(error));
+    RecordProperty("meanRelativeErrorScreenGridOnly", std::to_string(errorScreenOnly));
+    EXPECT_LT(error, 0.1);
+}
+
 TEST_F(AreaLightGpuTest, IncrementalVisibilityCastsFewerRaysAndAgreesWithBruteForce) {
     auto scene = loadScene("cornell-box-area");
     ASSERT_TRUE(scene.ok());
@@ -195,14 +327,16 @@ TEST_F(AreaLightGpuTest, IncrementalVisibilityCastsFewerRaysAndAgreesWithBruteFo
     EXPECT_EQ(brute.counters.at("raysReused"), 0.0);
     EXPECT_GT(reused, 0.0);
     // Reuse must pay: at 128^2 only two levels exist (64^2 and 128^2), so at most the finer level's
-    // rays are saved; measured 0.5 (docs); 0.8 fails if reuse stops working.
-    EXPECT_LT(cast, 0.8 * bruteCast);
+    // rays are saved; measured 0.36; 0.6 fails if reuse stops working.
+    EXPECT_LT(cast, 0.6 * bruteCast);
     // The reused bits are the ones the coarse level agreed on: the images agree closely (relMse of
-    // the incremental image against brute force: measured 1.3e-3; reusing a bit also where the coarse
-    // cells disagree gives 7.4e-3).
+    // the incremental image against brute force: measured 3.5e-4; reusing a bit also where the coarse
+    // cells disagree gives 0.052).
     const float emitted = luminance(scene->lights[0].radiance);
     auto [a, b] = receiversOnly(incremental.direct, brute.direct, emitted);
-    EXPECT_LT(relMse(a, b), 0.004);
+    const double error = relMse(a, b);
+    RecordProperty("relMseAgainstBrute", std::to_string(error));
+    EXPECT_LT(error, 0.004);
 }
 
 TEST_F(AreaLightGpuTest, TexturedLightColoursTheReceiverUnderEachHalf) {
@@ -270,10 +404,30 @@ TEST_F(AreaLightGpuTest, AreaScreenAgainstThePathTracer) {
     const double energy = totalRadiance(test) / totalRadiance(ref);
     RecordProperty("flipHdr", std::to_string(m->flipHdr));
     RecordProperty("energyRatio", std::to_string(energy));
-    // Measured at 128^2: energy 0.97, HDR-FLIP 0.20 (the glossy objects' terminators over-occluded by
-    // the voxels, the lobe quadrature); bounds with room for the path tracer's noise at 256 spp.
-    EXPECT_NEAR(energy, 0.97, 0.08);
-    EXPECT_LT(m->flipHdr, 0.3);
+    // The hard-shadow `direct` pass beside it, over the whole image and over the receivers (the screen's
+    // pixels and their neighbours zeroed in both).
+    auto hard = makePipeline(*scene, "direct", {}, kSize);
+    hard->renderFrame(2);
+    const Image hardImage = hard->readback(Component::Direct);
+    auto [test2, ref2] = withoutEmitters(test, ref, *p, *scene);
+    auto [hard2, ref3] = withoutEmitters(hardImage, ref, *p, *scene);
+    const double whole = relMse(test, ref), wholeHard = relMse(hardImage, ref);
+    const double receivers = relMse(test2, ref2), receiversHard = relMse(hard2, ref3);
+    RecordProperty("relMseWholeImage", std::to_string(whole));
+    RecordProperty("relMseWholeImageHardShadows", std::to_string(wholeHard));
+    RecordProperty("relMseReceivers", std::to_string(receivers));
+    RecordProperty("relMseReceiversHardShadows", std::to_string(receiversHard));
+    // Measured energy 0.998, HDR-FLIP 0.17 (the glossy objects' terminators over-occluded by the
+    // voxels, the lobe quadrature); bounds with room for the path tracer's noise at 256 spp.
+    EXPECT_NEAR(energy, 1.0, 0.05);
+    EXPECT_LT(m->flipHdr, 0.25);
+    // The bound, at most half the hard-shadow pass's relMSE: whole image measured 0.024 against
+    // 10.8 (the G-buffer's screen, point-sampled through a trilinear filter, blends the colour bars'
+    // primaries into pixels the reference shows pure: the relMSE's 0.01 epsilon makes each such channel
+    // cost thousands); over the receivers 0.021 against 0.80 (the soft shadows, and the bars' colours,
+    // which `direct` replaces by the screen's mean).
+    EXPECT_LT(whole, 0.5 * wholeHard);
+    EXPECT_LT(receivers, 0.5 * receiversHard);
 }
 
 TEST_F(AreaLightGpuTest, AnimatedTextureMovesTheLightOnTheReceiver) {
@@ -380,6 +534,14 @@ TEST_F(AreaLightGpuTest, SpecularPassMatchesTheReferenceOnAGlossyPlane) {
     // the lobe's VPL or 5x5 quadrature leave about 5 % (measured, docs); 0.1 bounds it.
     EXPECT_LT(error, 0.1);
     EXPECT_NEAR(totalRadiance(a) / totalRadiance(r1), 1.0, 0.1);
+    // Nothing occludes the plane's view of the panel, and most rays leave the camera's view (the
+    // panel is above it), where the second voxel grid tests them: with visibility the image must
+    // equal the one without. A draw of more VPLs than the shader loop budget allows (llvmpipe ends
+    // the loops silently) lost VPLs: 0.978 of the light (measured 1.000).
+    const AreaRun open = renderAreaLight(scene, {{"visibility", "none"}}, kSize);
+    const double visibleShare = totalRadiance(withSpecular.direct) / totalRadiance(open.direct);
+    RecordProperty("energyWithVisibilityOverWithout", std::to_string(visibleShare));
+    EXPECT_GT(visibleShare, 0.995);
 }
 
 TEST_F(AreaLightGpuTest, ShadowMapBaselineShadowsLikeTheVoxels) {
@@ -449,4 +611,156 @@ TEST_F(AreaLightGpuTest, SharpLobesUseLobeSamplesAndVarianceVisibility) {
     EXPECT_LT(eVariance, 0.15);
     // The slab's shadow in the reflection: without visibility the error is several times larger.
     EXPECT_LT(eVariance, eOpen / 2.0);
+}
+
+namespace {
+
+// The diffuse pass's cell flags and layer-0 bitstreams of every level, downloaded after a frame.
+struct CellRecords {
+    std::vector<uint32_t> flags;     // atlas texels
+    std::vector<glm::uvec4> bits;    // atlas texels of bitstream layer 0
+    glm::ivec2 atlas{0};
+    std::vector<glm::ivec2> origins, sizes;
+
+    explicit CellRecords(const AreaLightTechnique& t) {
+        const nichols::MultiresBuffer& b = t.diffuseBuffer();
+        atlas = b.atlasSize();
+        for (int k = 0; k < b.levels(); ++k) {
+            origins.push_back(b.levelOrigin(k));
+            sizes.push_back(b.levelSize(k));
+        }
+        const size_t texels = static_cast<size_t>(atlas.x) * atlas.y;
+        flags.resize(texels);
+        glGetTextureImage(t.cellFlags().id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                          static_cast<GLsizei>(texels * sizeof(uint32_t)), flags.data());
+        const int layers = t.bitstreams().desc().depth;
+        std::vector<glm::uvec4> all(texels * static_cast<size_t>(layers));
+        glGetTextureImage(t.bitstreams().id(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                          static_cast<GLsizei>(all.size() * sizeof(glm::uvec4)), all.data());
+        bits.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(texels));
+    }
+    bool inside(int k, glm::ivec2 c) const { return c.x >= 0 && c.y >= 0 && c.x < sizes[k].x && c.y < sizes[k].y; }
+    size_t at(int k, glm::ivec2 c) const { return static_cast<size_t>(origins[k].y + c.y) * atlas.x + origins[k].x + c.x; }
+    uint32_t flag(int k, glm::ivec2 c) const { return flags[at(k, c)]; }
+    bool tree(int k, glm::ivec2 c) const { return (flag(k, c) & AL_CELL_TREE) != 0u; }
+    glm::uvec4 bitsAt(int k, glm::ivec2 c) const { return bits[at(k, c)]; }
+};
+
+int parity(glm::ivec2 c) { return (c.x & 1) + 2 * (c.y & 1); }
+int popcount(glm::uvec4 v) { return std::popcount(v.x) + std::popcount(v.y) + std::popcount(v.z) + std::popcount(v.w); }
+
+// The thesis's region (§5.3.3.2) of subset s around cell c at level k, by the rule area_common.glsl
+// states: the subset's tree cells within two cells of c (2x2 interleaving: a lattice of spacing 2).
+// AND and OR of their bits; returns how many there are.
+int regionBits(const CellRecords& r, int k, glm::ivec2 c, int s, glm::uvec4& anyBits, glm::uvec4& allBits) {
+    anyBits = glm::uvec4(0u);
+    allBits = glm::uvec4(0xFFFFFFFFu);
+    int n = 0;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+            const glm::ivec2 q = c + glm::ivec2(dx, dy);
+            if (!r.inside(k, q) || parity(q) != s || !r.tree(k, q)) continue;
+            anyBits |= r.bitsAt(k, q);
+            allBits &= r.bitsAt(k, q);
+            ++n;
+        }
+    return n;
+}
+
+// The thesis's reuse over every finer level's tree cells: the bits their subset's region around the
+// parent agrees on (two or more tree cells), counted; `wrongBits` counts cells whose bits differ from
+// the agreed value there.
+uint64_t expectedReuse(const CellRecords& r, int& wrongBits) {
+    uint64_t reused = 0;
+    wrongBits = 0;
+    for (int k = 0; k + 1 < static_cast<int>(r.sizes.size()); ++k)
+        for (int y = 0; y < r.sizes[k].y; ++y)
+            for (int x = 0; x < r.sizes[k].x; ++x) {
+                const glm::ivec2 c(x, y);
+                if (!r.tree(k, c)) continue;
+                glm::uvec4 a, b;
+                const glm::ivec2 parent = glm::min(c / 2, r.sizes[k + 1] - 1);
+                if (regionBits(r, k + 1, parent, parity(c), a, b) < 2) continue;
+                const glm::uvec4 agree = ~(a ^ b);  // 64 VPLs: words 0 and 1
+                reused += std::popcount(agree.x) + std::popcount(agree.y);
+                const glm::uvec4 own = r.bitsAt(k, c);
+                wrongBits += ((own.x ^ a.x) & agree.x) != 0u || ((own.y ^ a.y) & agree.y) != 0u;
+            }
+    return reused;
+}
+
+}  // namespace
+
+TEST_F(AreaLightGpuTest, IncrementalVisibilityFollowsTheThesissRules) {
+    // The slab under the panel at 64^2 with levels 16^2, 32^2, 64^2 (coarsest=16), every receiver facing
+    // the light (no VPL is culled), the colour threshold out of reach so that only the bit count flags
+    // cells for refinement. The cells' flags and bitstreams are downloaded and the rules of §5.3.3.2 are
+    // recomputed on the CPU (2x2 interleaving: 64 VPLs of a cell's subset, one bit each):
+    //  - reuse: a child's VPL bit comes from the parent level when its subset's tree cells in the 3x3
+    //    region around the parent (2 to 9 of them) agree on it; the old 3x3 block of cells held one
+    //    same-parity parent for a quarter of the children, whose "agreement" was vacuous;
+    //  - bit count: the VPLs whose bits differ in their subset's region, over all four subsets (the old
+    //    3x3 block of cells never saw the cell's own subset: at most 192 of 256); at least
+    //    bitCountFraction (thesis: half) of all VPLs flags the cell;
+    //  - partiallyVisibleFraction = partially visible / examined VPLs (not / every VPL of every cell).
+    // All integer logic: the GPU must match exactly.
+    const Light light = ceilingLight(1.5f, 1.0f, glm::vec3(4.0f));
+    const Scene scene = planeWithOccluder(light, 0.75f, 0.4f);
+    constexpr int kSize = 64, kLevels = 3, kVpls = 256, kPerCell = 64;
+    auto p = makePipeline(scene, "area-light", {{"coarsest", "16"}, {"colourThreshold", "1e9"}}, kSize);
+    const Counters counters = p->renderFrame(0).counters;
+    const auto& technique = dynamic_cast<const AreaLightTechnique&>(p->technique());
+    const CellRecords r(technique);
+    ASSERT_EQ(r.sizes.size(), static_cast<size_t>(kLevels));
+    const int threshold = kVpls / 2;  // bitCountFraction's default, 0.5: 128 of 256
+    uint64_t partialSum = 0, examinedSum = 0, treeCells = 0, flagged = 0;
+    int wrongFlags = 0, wrongBits = 0;
+    for (int k = 0; k < kLevels; ++k)
+        for (int y = 0; y < r.sizes[k].y; ++y)
+            for (int x = 0; x < r.sizes[k].x; ++x) {
+                const glm::ivec2 c(x, y);
+                if (!r.tree(k, c)) continue;
+                ++treeCells;
+                int partial = 0;
+                for (int s = 0; s < 4; ++s) {
+                    glm::uvec4 a, b;
+                    if (regionBits(r, k, c, s, a, b) < 2) continue;
+                    partial += popcount(a & ~b);
+                    examinedSum += kPerCell;
+                }
+                partialSum += partial;
+                const bool refine = partial >= threshold;
+                flagged += refine;
+                wrongFlags += refine != ((r.flag(k, c) & AL_CELL_REFINE) != 0u);
+            }
+    const uint64_t expectedReused = expectedReuse(r, wrongBits);
+    RecordProperty("treeCells", std::to_string(treeCells));
+    RecordProperty("flaggedByBitCount", std::to_string(flagged));
+    RecordProperty("partiallyVisibleFraction", std::to_string(counters.at("partiallyVisibleFraction")));
+    RecordProperty("raysReused", std::to_string(counters.at("raysReused")));
+    // The scene exercises both sides of the threshold (measured 1008 tree cells, 311 flagged).
+    ASSERT_GT(flagged, treeCells / 10);
+    ASSERT_LT(flagged, treeCells - treeCells / 10);
+    EXPECT_EQ(wrongFlags, 0) << "cells whose bit-count flag differs from the thesis's rule";
+    // Every VPL of an interior cell is examined (measured 254 per cell on average; the border's cells
+    // lose a subset or two); the old count saw at most 192 of the 256.
+    EXPECT_GT(double(examinedSum) / double(treeCells), 0.95 * kVpls);
+    EXPECT_EQ(counters.at("partiallyVisibleVpls"), double(partialSum));
+    EXPECT_EQ(counters.at("examinedVpls"), double(examinedSum));
+    EXPECT_DOUBLE_EQ(counters.at("partiallyVisibleFraction"), double(partialSum) / double(examinedSum));
+    // Reuse: exactly the agreed bits are reused (test record), and they carry the agreed value.
+    EXPECT_EQ(counters.at("raysCulled"), 0.0);
+    EXPECT_EQ(counters.at("raysReused"), double(expectedReused));
+    EXPECT_EQ(counters.at("raysCast") + counters.at("raysReused"), double(treeCells * kPerCell));
+    EXPECT_EQ(wrongBits, 0);
+    // Every cell refined (bitCountFraction 0: all levels' cells in the tree): at the image's corners a
+    // child's subset has one tree cell in its region around the parent, which agrees with nothing
+    // and must not be reused (the ray is re-cast).
+    auto all = makePipeline(scene, "area-light", {{"coarsest", "16"}, {"colourThreshold", "1e9"}, {"bitCountFraction", "0"}}, kSize);
+    const Counters allCounters = all->renderFrame(0).counters;
+    const CellRecords allCells(dynamic_cast<const AreaLightTechnique&>(all->technique()));
+    int wrongAll = 0;
+    const uint64_t reusedAll = expectedReuse(allCells, wrongAll);
+    EXPECT_EQ(allCounters.at("raysReused"), double(reusedAll));
+    EXPECT_EQ(wrongAll, 0);
 }

@@ -46,7 +46,7 @@ TEST_F(NicholsMillionVplGpuTest, EveryTechniqueIsWithinItsBoundOfTheMillionVplGa
     const std::vector<Case> cases = {
         {"rsm", "rsm", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.36, 0.0096},                                // 29.7 %, 0.0076
         {"isrRegular", "isr", {{"rsmSize", "256"}, {"vplMode", "regular"}, {"vplGrid", "16"}}, 0.36, 0.0098},  // 29.9 %, 0.0078
-        {"multiresSplat", "multires-splat", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.31, 0.0099},          // 25.7 %, 0.0079
+        {"multiresSplat", "multires-splat", {{"rsmSize", "256"}, {"vplGrid", "16"}}, 0.36, 0.0098},          // 29.9 %, 0.0078 (= isr regular)
         {"isrClusters", "isr", {{"rsmSize", "256"}, {"lightFinest", "64"}}, 0.18, 0.0019},                     // 14.7 %, 0.0015
         {"hisr", "hisr", {{"rsmSize", "256"}}, 0.185, 0.0023},                                                 // 15.4 %, 0.0018
     };

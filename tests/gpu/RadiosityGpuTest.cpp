@@ -225,10 +225,11 @@ TEST_F(RadiosityGpuTest, AgreesWithThePathTracerAndWithGather) {
         const double ratio = totalRadiance(a) / totalRadiance(b);
         RecordProperty(std::string(method) + "_relMse", std::to_string(m->relMse));
         RecordProperty(std::string(method) + "_ratio", std::to_string(ratio));
-        // Measured: gather 0.020 / 0.969, pr 0.021 / 0.964, incremental 0.021 / 0.964, cross 0.039 /
-        // 0.982. The path tracer's 256 spp noise alone is relMSE ~0.01; the radiosity methods lose a few
-        // per cent to the disk approximation and the threshold (the thesis's PR is darker too).
-        EXPECT_LT(m->relMse, std::string(method) == "radiosity-cross" ? 0.06 : 0.035);
+        // Measured: gather 0.020 / 0.969, pr 0.021 / 0.964, incremental 0.021 / 0.964, cross 0.027 /
+        // 0.942 (0.039 / 0.982 without the progressive propagation after each redistribution, which this
+        // bound now rejects). The path tracer's 256 spp noise alone is relMSE ~0.01; the radiosity methods
+        // lose a few per cent to the disk approximation and the threshold (the thesis's PR is darker too).
+        EXPECT_LT(m->relMse, 0.035);
         EXPECT_GT(ratio, 0.92);
         EXPECT_LT(ratio, 1.02);
     }
@@ -238,7 +239,9 @@ TEST_F(RadiosityGpuTest, AgreesWithThePathTracerAndWithGather) {
     RecordProperty("incremental_vs_pr_relMse", std::to_string(incVsPr->relMse));
     RecordProperty("cross_vs_gather_relMse", std::to_string(crossVsGather->relMse));
     EXPECT_LT(incVsPr->relMse, 0.005);  // measured 0.0002: the order of shots and the threshold
-    EXPECT_LT(crossVsGather->relMse, 0.05);
+    // Measured 0.0082 (0.019 without the propagation after each redistribution: the box gathered the
+    // unshadowed floor and its shadow stayed one bounce deep); 0.011 is the measurement + 30 %.
+    EXPECT_LT(crossVsGather->relMse, 0.011);
 }
 
 TEST_F(RadiosityGpuTest, CrossRendersFourHemicubesPerMovingPatchWhateverTheStaticCount) {
@@ -254,10 +257,12 @@ TEST_F(RadiosityGpuTest, CrossRendersFourHemicubesPerMovingPatchWhateverTheStati
         for (uint32_t f : {1u, 2u}) {
             p->renderFrame(f);
             EXPECT_GT(t.lastPatches(), 0u);
-            EXPECT_EQ(t.lastHemicubes(), 4u * t.lastPatches()) << "frame " << f;
-            EXPECT_EQ(t.lastIterations(), 0u) << "no progressive refinement after the insertion";
+            // The redistribution's own hemicubes; the regular progressive propagation that follows it
+            // shoots static quads only while their unshot radiosity is above the threshold.
+            EXPECT_EQ(t.lastRedistributionHemicubes(), 4u * t.lastPatches()) << "frame " << f;
+            EXPECT_GE(t.lastHemicubes(), t.lastRedistributionHemicubes());
         }
-        hemicubes.push_back(t.lastHemicubes());
+        hemicubes.push_back(t.lastRedistributionHemicubes());
         statics.push_back(t.system().patches().elements().size() - t.system().movingElementCount());
     }
     RecordProperty("staticElements", std::to_string(statics[0]) + " " + std::to_string(statics[1]));
@@ -303,6 +308,13 @@ TEST_F(RadiosityGpuTest, RefusesScenesItCannotShade) {
         EXPECT_NE(p.error().message.find("light 'spot' is a spot light"), std::string::npos) << p.error().message;
         EXPECT_NE(p.error().message.find(method), std::string::npos) << p.error().message;
 
+        // A textured (animated) screen: its picture would be lost in a uniform emitter quad.
+        const Scene screen = builtin("area-screen");
+        auto tScreen = createTechnique(method);
+        auto pScreen = Pipeline::create(screen, std::move(*tScreen), {16, 16}, smallRenderSettings());
+        ASSERT_FALSE(pScreen.ok());
+        EXPECT_NE(pScreen.error().message.find("area light 'screen' is textured"), std::string::npos) << pScreen.error().message;
+
         Scene dark = facingSquares(0.2f, 0.2f, 0.3f, true);
         dark.materials[0].emission = glm::vec3(0.0f);
         auto t2 = createTechnique(method);
@@ -311,7 +323,25 @@ TEST_F(RadiosityGpuTest, RefusesScenesItCannotShade) {
         EXPECT_NE(p2.error().message.find("no area light and no emissive material"), std::string::npos) << p2.error().message;
 
         auto t3 = createTechnique(method);
-        EXPECT_FALSE(applySettings(**t3, {{"visibilitySamples", "9"}}, method).ok());
+        EXPECT_FALSE(applySettings(**t3, {{"hemicubeSize", "0"}}, method).ok());
+        // The reconstruction pass's settings: the shooting methods take them, radiosity-gather (which never
+        // reconstructs) refuses them as unknown, one line naming the setting.
+        for (const char* setting : {"visibilitySamples", "ffSubdivideRatio", "ffSubdivisions"}) {
+            auto t4 = createTechnique(method);
+            auto applied = applySettings(**t4, {{setting, "1"}}, method);
+            if (std::string(method) == "radiosity-gather") {
+                ASSERT_FALSE(applied.ok()) << setting;
+                EXPECT_NE(applied.error().message.find(std::string("unknown setting '") + setting + "'"), std::string::npos)
+                    << applied.error().message;
+                EXPECT_EQ(applied.error().message.find('\n'), std::string::npos);
+            } else {
+                EXPECT_TRUE(applied.ok()) << setting << ": " << (applied.ok() ? "" : applied.error().message);
+            }
+        }
+        if (std::string(method) != "radiosity-gather") {
+            auto t5 = createTechnique(method);
+            EXPECT_FALSE(applySettings(**t5, {{"visibilitySamples", "9"}}, method).ok());
+        }
     }
 }
 
@@ -433,8 +463,10 @@ TEST_F(RadiosityGpuTest, RedistributionFollowsASuddenOcclusionAndItsRemoval) {
         RecordProperty("frame" + std::to_string(f) + "_cross_vs_pr", std::to_string(dCross));
         // The shadow covers a quarter of the lit floor: leaving it out gives ~0.3 (see the mutations
         // in docs/techniques/radiosity.md). Incremental differs from PR only by the order of shots and
-        // the threshold's remainder; cross also by its projection's undersampling.
+        // the threshold's remainder (measured 0.000 / 0.011 / 0.012); cross also by its projection's
+        // undersampling and PR's own 4-pixel visibility, whose shadows are too small (measured 0.023 /
+        // 0.071 / 0.021 at frames 0 / 1 / 2). Bounds: the measured values + about 20 %.
         EXPECT_LT(dInc, 0.02);
-        EXPECT_LT(dCross, 0.1);
+        EXPECT_LT(dCross, f == 1 ? 0.085 : 0.03);
     }
 }

@@ -11,6 +11,7 @@
 #include "techniques/screen_voxels/ScreenVoxels.h"
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <bit>
 #include <cstdio>
@@ -320,8 +321,9 @@ TEST_F(ScreenVoxelsGpuTest, UniformSamplesMissWhatTheColumnTraversalFinds) {
     // The thesis's uniform samples test one column per sample: a segment 2.55 m long has its 16 samples
     // 16 cm apart, several columns apart on screen, and finds the board only where a sample's slice
     // range (widened by the thick ray's bit) reaches the board's bits in that sample's column. The
-    // column traversal tests every column the segment crosses. Measured: uniform misses 5 of 384
-    // (145 when the voxelization set only each column's centre depth), the traversal none (2 then).
+    // column traversal tests every column the segment crosses. Measured: uniform misses 10 of 384
+    // (5 with the derivative footprint, which over-reached past the board's edges; 145 when the
+    // voxelization set only each column's centre depth), the traversal none (2 then).
     const Scene scene = boardScene();
     Grid grid(scene);
     const std::vector<Segment> segments = throughTheBoard();
@@ -350,4 +352,33 @@ TEST_F(ScreenVoxelsGpuTest, FootprintsStayWithinTheirTriangles) {
     int blocked = 0;
     for (float v : march(grid, segments, March::Columns, /*thickness=*/0)) blocked += v < 1.0f;
     EXPECT_EQ(blocked, 0) << "of " << segments.size() << " segments in front of the board";
+}
+
+TEST_F(ScreenVoxelsGpuTest, ExactFootprintsLeaveRaysPastAnEdgeFree) {
+    // The board of the tests above turned 30 degrees about the vertical and seen from 14 cm above its
+    // top (at about 3 degrees: its top spans half a metre of depth per row of columns): the top's
+    // triangles have a nearest corner up to 60 cm in front of the front edge where that edge is farthest
+    // from it. Vertical segments 12 cm in front of the front face (three 4 cm slices of depth), from
+    // under the board to above it: free. Clamping a fragment's derivative footprint to its triangle's
+    // depth range (the fallback of voxelize.frag) set the slices from that nearest corner to the edge in
+    // the row above the front edge and blocked them (measured 4 of 20); the triangle clipped to
+    // each pixel sets only the depths it spans there.
+    Scene scene = boardScene();
+    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(0, 1, 0));
+    scene.objects.back().transform = turn;
+    scene.camera.position = {0.3f, kBoardTop + 0.14f, 3.0f};
+    scene.camera.target = {0.0f, kBoardTop, 0.0f};
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    Grid grid(scene);
+    const glm::vec3 front = glm::vec3(turn * glm::vec4(0, 0, 1, 0));  // the front face's normal
+    std::vector<Segment> segments;
+    for (int i = 0; i < 20; ++i) {
+        const glm::vec3 onEdge = glm::vec3(turn * glm::vec4(-0.55f + 0.0578f * i, 0.0f, 0.4f, 1.0f));
+        const glm::vec3 p = onEdge + 0.12f * front;
+        segments.push_back({{p.x, kBoardTop - 0.3f, p.z}, {p.x, kBoardTop + 0.3f, p.z}});
+    }
+    int blocked = 0;
+    for (float v : march(grid, segments, March::Columns, /*thickness=*/0)) blocked += v < 1.0f;
+    RecordProperty("blocked", blocked);
+    EXPECT_EQ(blocked, 0) << "of " << segments.size() << " segments in front of the turned board";
 }

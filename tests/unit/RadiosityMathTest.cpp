@@ -212,6 +212,14 @@ TEST(RadiosityPatchModel, RefusesWhatItCannotShade) {
     auto point = PatchModel::build(load("two-rooms"), {});
     ASSERT_FALSE(point.ok());
     EXPECT_NE(point.error().message.find("point light"), std::string::npos);
+    auto textured = PatchModel::build(load("area-screen"), {});
+    ASSERT_FALSE(textured.ok());
+    EXPECT_NE(textured.error().message.find("area light 'screen' is textured"), std::string::npos);
+    Scene twoSided = load("cornell-box-area");
+    twoSided.lights.at(0).twoSided = true;
+    auto both = PatchModel::build(twoSided, {});
+    ASSERT_FALSE(both.ok());
+    EXPECT_NE(both.error().message.find("is two-sided"), std::string::npos);
     Scene dark = load("furnace", {{"emission", "0"}});
     auto none = PatchModel::build(dark, {});
     ASSERT_FALSE(none.ok());

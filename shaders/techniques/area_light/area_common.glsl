@@ -2,6 +2,7 @@
 // tests of §5.3.2 that use the light's known position: a receiver that faces away from every corner
 // of a light, or lies behind a one-sided light, gets nothing from it.
 #include "techniques/area_light/area_shared.h"
+#include "common/constants.glsl"
 layout(std140, binding = BINDING_UBO_PASS) uniform AreaPassBlock { AreaPassUniforms u_pass; };
 
 vec3 lightCorner(AreaLightGpu L, int k) {
@@ -53,3 +54,30 @@ vec3 rayEnd(AreaLightGpu L, vec3 y, vec3 x) {
     float side = dot(x - y, L.normal.xyz) >= 0.0 ? 1.0 : -1.0;
     return y + side * u_pass.march.z * L.normal.xyz;
 }
+
+// 2x2 interleaved sampling (§5.3.3.2): the cell of parity s = (x & 1) + 2 (y & 1) at its level takes
+// VPLs s, s + 4, s + 8, ...; one subset (interleave off) has parity 0 everywhere.
+int alParity(ivec2 c, int subsets) { return subsets == 4 ? (c.x & 1) + 2 * (c.y & 1) : 0; }
+
+// The "3x3 region" of §5.3.3.2 (reuse when "coarse samples in a 3x3 region agree"; the bit count over
+// "a neighborhood") for one VPL subset: its samples lie on a lattice of spacing 2, so its 3x3 region
+// around cell c is the subset's cells within 2 cells of c: 3 x 3 of them where c has that parity,
+// 3 x 2 or 2 x 2 where c falls between them; without interleaving, the plain 3x3 block. The 3x3 block
+// of cells holds only c itself of c's own parity, so an agreement over it was vacuous for a quarter
+// of the children and a bit count over it never saw c's own subset (AreaLightGpuTest
+// .IncrementalVisibilityFollowsTheThesissRules). Loop over the offsets in [-r, r]^2 and keep the
+// cells of the subset's parity.
+int alWindowRadius(int subsets) { return subsets == 4 ? 2 : 1; }
+
+// A subset's cells of a region must number at least this many before they can agree or disagree.
+const int AL_MIN_REGION_SAMPLES = 2;
+
+// Eq. 5.2's point form A cos_x cos_y / r^2 for a VPL of area A at distance r grows without bound as a
+// receiver nears it; a patch of radiance L can give at most pi L cos_x cos_y (the receiver's whole
+// hemisphere filled with it: the limit of the on-axis disk form factor A / (pi r^2 + A) as r -> 0).
+// The squared distance the term divides by is therefore never below A / pi: the point form where
+// r^2 >= A / pi (beyond 0.56 cell sides of a square cell), that bound nearer. The disk form itself,
+// radiosity's A / (pi r^2 + A), is 6 % low still at 1.6 cell sides and 1.6 % at 3.2, where the point
+// form is exact to 2e-4 (bench/area_light/nearfield.py); the clamp equals the point form from 0.8 cell
+// sides on and bounds its spikes nearer (3.6x the exact irradiance at 0.32 cell sides: 1.24x).
+float alNearFieldR2(float r2, float area) { return max(r2, area * kInvPi); }

@@ -21,8 +21,9 @@ namespace bounce::gpu {
 #define AL_STAT_RAYS_REUSED 1
 #define AL_STAT_RAYS_CULLED 2   // VPLs facing away from the receiver or the receiver behind them: no ray
 #define AL_STAT_LOBE_SAMPLED 3  // specular cells that used the 5x5 lobe-centred texture samples
-#define AL_STAT_PARTIAL_VPLS 4  // sum over tree cells of VPLs whose bits disagree in the 3x3 neighbourhood
+#define AL_STAT_PARTIAL_VPLS 4  // sum over tree cells of VPLs whose bits disagree in their subset's 3x3 region
 #define AL_STAT_TREE_CELLS 5    // cells that computed that sum
+#define AL_STAT_EXAMINED_VPLS 6 // sum over tree cells of the VPLs whose subset has two or more cells in the region
 #define AL_STAT_COUNT 8
 
 struct AreaLightGpu {
@@ -38,8 +39,8 @@ struct AreaPassUniforms {
     AreaLightGpu lights[AL_MAX_LIGHTS];
     vec4 counts;      // x: lights, y: VPLs in all, z: VPLs per pixel (VPLs / subsets), w: subsets (1 or 4)
     vec4 march;       // x: steps, y: thickness (bits), z: origin bias (m), w: visibility (AL_VIS_*)
-    vec4 refine;      // x: colour threshold (radiance / peak emitted radiance), y: bit-count threshold (VPLs),
-                      // z: 1 = incremental stencil (§5.3.4), w: peak emitted radiance W/(m^2 sr)
+    vec4 refine;      // x: colour threshold (a white receiver's radiance, W/(m^2 sr)), y: bit-count threshold
+                      // (VPLs), z: 1 = incremental stencil (§5.3.4), w: unused
     vec4 lobe;        // x: lobe threshold (fraction of the lobe's peak), y: VPLs in a lobe below which the
                       // 5x5 samples are used (9), z: sample-spacing factor, w: camera pixel angle (rad)
     vec4 geometry;    // x: normal-similarity cosine for interleave resolve, y: relative depth tolerance,

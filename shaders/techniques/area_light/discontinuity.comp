@@ -2,10 +2,13 @@
 // samples" against a user colour threshold, 0.005 in Fig. 5.10), after level k was gathered and
 // upsampled: a rendered cell whose 3x3 neighbourhood in the upsampled result varies, in some channel,
 // by more than u_pass.refine.x is flagged for refinement, so that its children are rendered at level
-// k - 1. The thesis compares display colours; bounce compares radiance relative to the brightest
-// emitted radiance of the lights (irradiance / pi for the diffuse buffer, the Lambertian white
-// surface's radiance), so that 0.005 means half a percent of the light's peak brightness (assumption).
-// Host uniforms: u_level, u_levelOrigin, u_size, u_scale (1 / (pi L_peak) diffuse, 1 / L_peak specular).
+// k - 1. The thesis compares display colours; bounce compares the radiance of a white receiver
+// (irradiance / pi for the diffuse buffer; the specular buffer's radiance / F), in W/(m^2 sr): at
+// bounce's default exposure (0 EV) 1 W/(m^2 sr) is about display white, so 0.005 is the thesis's half
+// percent of the display range (assumption: the exposure the thesis's colours had is not given).
+// Relative to the lights' emitted radiance (the earlier normalization) 0.005 was 0.2 W/(m^2 sr) on
+// cornell-box-area, whose light is 40 times brighter than its brightest receiver: no cell refined.
+// Host uniforms: u_level, u_levelOrigin, u_size, u_scale (1 / pi diffuse, 1 specular).
 // Inputs: upsampled result (BINDING_TEX_TECH0, 2D array, lod = level). In/out: flags (image BINDING_IMG1).
 #include "techniques/area_light/area_shared.h"
 layout(std140, binding = BINDING_UBO_PASS) uniform AreaPassBlock { AreaPassUniforms u_pass; };

@@ -19,6 +19,7 @@
 #include "techniques/area_light/area_common.glsl"
 #include "techniques/area_light/lobe.glsl"
 #include "techniques/area_light/lobe_samples.glsl"
+#define SV_OUTER_GRID  // rays beyond the camera's frustum are tested in the grid along the lights (voxelOutside)
 #include "techniques/screen_voxels/march.glsl"
 #include "common/brdf.glsl"
 #include "common/frame.glsl"
@@ -96,7 +97,7 @@ vec3 sampleTerm(vec3 x, vec3 n, vec3 v, float alpha, AreaLightGpu L, vec3 y, vec
         ++raysCast;
         if (voxelMarch(origin, rayEnd(L, y, x), int(u_pass.march.x), int(u_pass.march.y)) < 1.0) return vec3(0.0);
     }
-    return radiance * (f * area * cosY / r2);
+    return radiance * (f * area * cosY / alNearFieldR2(r2, area));  // the bound of area_common.glsl
 }
 
 void main() {

@@ -6,13 +6,15 @@
 //    subset no such neighbour has is replaced by scaling the others by 4 / subsets found. The thesis
 //    does not describe its reconstruction; this edge-aware one is an assumption.
 // 2. The bit-count refinement metric: for each tree cell, the VPLs whose bits disagree among the
-//    same-parity tree cells of its 3x3 neighbourhood ("partially visible"); at least
-//    u_pass.refine.y of them (thesis: 128 of 256) flags the cell for refinement (AL_CELL_REFINE).
+//    tree cells of their subset's 3x3 region around it (the subset's cells within two cells,
+//    alWindowRadius; "partially visible"); at least u_pass.refine.y of them (thesis: 128 of 256,
+//    "at least half the VPLs") flags the cell for refinement (AL_CELL_REFINE).
 // Host uniforms: u_level, u_levelOrigin, u_size, u_resolve (interleaving on), u_bitCount (metric on).
 // Inputs: subset sums (BINDING_TEX_TECH0, atlas copy), eye pyramid geometry and normal (TECH1, TECH2),
 // bitstreams (image BINDING_IMG2), u_frame. In/out: atlas (image BINDING_IMG0), flags (image
 // BINDING_IMG1), counters (BINDING_SSBO_TECH1).
 #include "techniques/area_light/area_common.glsl"
+#include "techniques/screen_voxels/screen_voxels_shared.h"
 #include "common/frame.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = BINDING_TEX_TECH0) uniform sampler2D s_subsets;
@@ -27,8 +29,6 @@ uniform ivec2 u_levelOrigin;
 uniform ivec2 u_size;
 uniform bool u_resolve;
 uniform bool u_bitCount;
-
-int parity(ivec2 c) { return (c.x & 1) + 2 * (c.y & 1); }
 
 void main() {
     ivec2 c = ivec2(gl_GlobalInvocationID.xy);
@@ -52,7 +52,7 @@ void main() {
                 vec3 xq = gq.xyz / gq.w;
                 vec3 nq = normalize(texelFetch(s_normal, ivec3(q, 0), u_level).xyz + vec3(0.0, 0.0, 1e-12));
                 if (dot(n, nq) < u_pass.geometry.x || abs(dot(xq - x, n)) > tolerance) continue;
-                int s = parity(q);
+                int s = alParity(q, 4);
                 sum[s] += texelFetch(s_subsets, u_levelOrigin + q, 0).rgb;
                 count[s] += 1.0;
             }
@@ -67,8 +67,12 @@ void main() {
     }
 
     if (u_bitCount) {
-        uint partial = 0u;
-        int subsets = int(u_pass.counts.w);
+        // Per subset, the VPLs whose bits differ among its tree cells of the cell's 3x3 region
+        // (area_common.glsl alWindowRadius), over the subsets with at least two such cells: every VPL
+        // of an interior cell is examined, so u_pass.refine.y (thesis: 128 of 256) is the fraction of
+        // all VPLs it says.
+        uint partial = 0u, examined = 0u;
+        int subsets = int(u_pass.counts.w), perCell = int(u_pass.counts.z), r = alWindowRadius(subsets);
         for (int layer = 0; layer < int(u_pass.geometry.w); ++layer) {
             uvec4 anyBits[4], allBits[4];
             int samples[4];
@@ -77,24 +81,27 @@ void main() {
                 allBits[s] = uvec4(0xFFFFFFFFu);
                 samples[s] = 0;
             }
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -r; dy <= r; ++dy)
+                for (int dx = -r; dx <= r; ++dx) {
                     ivec2 q = c + ivec2(dx, dy);
                     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_size))) continue;
                     if ((imageLoad(i_flags, u_levelOrigin + q).r & AL_CELL_TREE) == 0u) continue;
-                    int s = subsets == 4 ? parity(q) : 0;
+                    int s = alParity(q, subsets);
                     uvec4 b = imageLoad(i_bits, ivec3(u_levelOrigin + q, layer));
                     anyBits[s] |= b;
                     allBits[s] &= b;
                     samples[s] += 1;
                 }
-            for (int s = 0; s < 4; ++s) {
-                if (samples[s] < 2) continue;
+            uint layerVpls = uint(min(perCell - SV_BITS_PER_LAYER * layer, SV_BITS_PER_LAYER));
+            for (int s = 0; s < subsets; ++s) {
+                if (samples[s] < AL_MIN_REGION_SAMPLES) continue;
                 uvec4 differ = anyBits[s] & ~allBits[s];
                 partial += uint(bitCount(differ.x) + bitCount(differ.y) + bitCount(differ.z) + bitCount(differ.w));
+                examined += layerVpls;
             }
         }
         atomicAdd(u_stats[AL_STAT_PARTIAL_VPLS], partial);
+        atomicAdd(u_stats[AL_STAT_EXAMINED_VPLS], examined);
         atomicAdd(u_stats[AL_STAT_TREE_CELLS], 1u);
         if (float(partial) >= u_pass.refine.y) imageStore(i_flags, u_levelOrigin + c, uvec4(flags | AL_CELL_REFINE));
     }

@@ -13,6 +13,7 @@
 #include "techniques/area_light/area_common.glsl"
 #include "techniques/area_light/lobe.glsl"
 #include "techniques/area_light/lobe_samples.glsl"
+#define SV_OUTER_GRID  // rays beyond the camera's frustum are tested in the grid along the lights (voxelOutside)
 #include "techniques/screen_voxels/march.glsl"
 #include "common/frame.glsl"
 layout(early_fragment_tests) in;

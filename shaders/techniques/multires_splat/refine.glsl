@@ -12,9 +12,10 @@
 // with G_i the glossy radiance toward the eye (the only part mode B's geometric criterion misses),
 // L_i the total (Lambert + glossy) radiance toward the eye from this VPL, and B_i the black floor:
 // kBlackFraction of the radiance a white Lambertian patch facing the VPL at that distance reflects,
-// Phi / (pi^2 max(r^2, r_min^2)). Every term is linear in the VPL's flux, so the test does not depend
-// on the light's intensity; B keeps grazing, nearly black regions from refining on noise.
-// Host uniforms: u_perVpl, u_relativeThreshold (T, unitless), u_minDistance2 (m^2), u_levelSize[level]
+// Phi / (pi D) with D the form factor's denominator (subsplat.glsl: pi r^2 + A_l, or
+// pi max(r^2, r_min^2)). Every term is linear in the VPL's flux, so the test does not depend on the
+// light's intensity; B keeps grazing, nearly black regions from refining on noise.
+// Host uniforms: u_perVpl, u_relativeThreshold (T, unitless), u_minDistance2 (m^2), u_diskForm, u_levelSize[level]
 // (each eye-pyramid level's size: textureSize with a level that differs between SIMD lanes returns the
 // first lane's size on llvmpipe, and one pass holds subsplats of several levels).
 // Inputs: eye pyramid geometry, refine, normal (BINDING_TEX_TECH0..2), G-buffer (material), Vpl[]
@@ -51,7 +52,7 @@ bool glossyLightVaries(int level, ivec2 cell, int vpl) {
         hi = max(hi, glossy);
         total += glossy + (p.material.covered ? (1.0 - p.material.metallic) * p.material.albedo * kInvPi : vec3(0.0)) * irradiance;
         vec3 d = v.position.xyz - p.position;
-        black += kBlackFraction * v.flux.rgb / (kPi * kPi * max(dot(d, d), u_minDistance2));
+        black += kBlackFraction * v.flux.rgb / (kPi * formFactorDenominator(v, dot(d, d)));
         ++samples;
     }
     if (samples < 2) return false;

@@ -1,4 +1,5 @@
-// Eq. 3.2 for one subsplat and one VPL (Nichols 2010 §3.2.4):
+// Eq. 3.2 for one subsplat and one VPL (Nichols 2010 §3.2.4; formFactor=disk, the default, puts Eq. 4.1's
+// pi r^2 + A_l in the denominator instead, subsplat.glsl):
 //   E = Phi_l <V_ls, N_l> <V_sl, N_s> / (pi max(|V_ls|^2, r_min^2))
 // at the subsplat's patch (mean position and normal of its covered pixels), added into the atlas
 // (blend ONE, ONE; alpha counts the VPLs, so alpha > 0 marks a rendered texel for upsampling). The
@@ -7,7 +8,7 @@
 // patch (common/brdf.glsl's GGX lobe, material of the cell's central pixel) to a second atlas.
 // With VPL_VISIBILITY (beyond the thesis) E is multiplied by the pair's visibility v_visibility, which
 // splat.vert computes (0 or 1; 1 when visibility is off).
-// Host uniforms: u_minDistance2 (m^2), u_glossy. Inputs: see subsplat.glsl, v_visibility.
+// Host uniforms: u_minDistance2 (m^2), u_diskForm, u_glossy. Inputs: see subsplat.glsl, v_visibility.
 // Outputs: location 0 irradiance W/m^2; location 1 (u_glossy) glossy radiance W/(m^2 sr).
 #include "techniques/multires_splat/subsplat.glsl"
 uniform bool u_glossy;

@@ -8,7 +8,7 @@
 // pixel as a 2x2 quad and its three helper invocations marched too (measured per 128^2 frame on
 // furnished-room: 9.7 s there, 3.2 s here, docs/techniques/multires-splat.md).
 // Host uniforms: u_origins[level] (atlas texel of each level's origin), u_atlasSize, u_perVpl,
-// u_minDistance2 and vpl_visibility.glsl's. Inputs: attribute 0 = ivec4 (level, x, y, VPL in mode A),
+// u_minDistance2, u_diskForm and vpl_visibility.glsl's. Inputs: attribute 0 = ivec4 (level, x, y, VPL in mode A),
 // gl_InstanceID = VPL index (mode B); subsplat.glsl's and, with visibility, the voxel grid.
 // Outputs: point, level, cell, VPL, visibility; ray counters; subsplats per level (BINDING_SSBO_TECH1,
 // Table 3.1's counts: one count per list entry, so mode B counts instance 0 only), read by the host

@@ -1,9 +1,9 @@
 // splatPrimitive=stencil (mode B): one subsplat-VPL pair per fragment, as splat.frag, but the subsplat
 // is the stencilled atlas texel under the fragment and the VPL the instance's (splat_stencil.vert):
-//   E_i += Phi_j <N_i, V_ij> <N_j, V_ji> / (pi max(r^2, r_min^2))   (Eq. 3.2, additive blending)
+//   E_i += Phi_j <N_i, V_ij> <N_j, V_ji> / D   (D = pi r^2 + A_j, Eq. 4.1, or pi max(r^2, r_min^2), Eq. 3.2; additive)
 // The stencil test runs before the shader (layout below; no side effect but the ray counters, which must
 // not turn the culling off: see hisr/gather.frag). VPL_VISIBILITY: the pair's term times the voxel march.
-// Host uniforms: u_level, u_levelOrigin (atlas.glsl), u_windowFirst, u_minDistance2, vpl_visibility.glsl's.
+// Host uniforms: u_level, u_levelOrigin (atlas.glsl), u_windowFirst, u_minDistance2, u_diskForm, vpl_visibility.glsl's.
 // Inputs: eye pyramid (BINDING_TEX_TECH0, TECH2), the VPL window (vpl_window.glsl). Output: atlas RGBA32F.
 #include "techniques/multires_splat/subsplat.glsl"
 #include "techniques/nichols/vpl_window.glsl"

@@ -35,6 +35,10 @@ namespace bounce::gpu {
 #define RAD_SHOOT_INCREMENTAL 3  // INCREMENTALRECONSTRUCTIONSHADER (Alg. 4.3)
 #define RAD_SHOOT_CROSS 4        // CROSSPROJECTIONRECONSTRUCTIONSHADER (Alg. 4.5)
 
+// PROJECTEDRADIOSITY options (RadPassUniforms::slots.w, bits).
+#define RAD_CROSS_REPROJECT 1u     // REPROJECT the rays with the back distance hemicube (sec. 4.5.2)
+#define RAD_CROSS_FF_WEIGHTS 2u    // weight the rays by their form factor, not their area (bounce's option)
+
 #define RAD_MAX_BATCH 16         // shooters per reconstruction pass (thesis benchmarks: 10)
 
 // One planar quad (or lone triangle) of the scene or an area light, owning an nu x nv texel region
@@ -88,7 +92,7 @@ struct RadBodyGpu {
 struct RadPassUniforms {
     uvec4 modes;   // x: RAD_SHOOT_*; y: RAD_RECEIVERS_*; z: shooter count in the batch; w: visibility samples (1 or 4)
     uvec4 counts;  // x: elements; y: hemicube face size R; z: back face size; w: cross grid size
-    uvec4 slots;   // x: first shooter; y: first hemicube record; z: use old bodies for receivers; w: reprojection on
+    uvec4 slots;   // x: first shooter; y: first hemicube record; z: use old bodies for receivers; w: RAD_CROSS_* bits
     vec4 params;   // x: form-factor subdivision ratio A/r^2; y: sub-disks per side; z: msaa samples; w: 1 = insert M (no old terms)
 };
 

@@ -11,7 +11,11 @@
 //   with R_old = -shot + P(C, s, e) and R_new = total - P(C, s', e): the signs of Eq. 3.3.1; the
 //   printed Alg. 4.5 adds P at the new position, which would brighten the new shadow).
 // PROJECTEDRADIOSITY: gridSize^2 rays from e through cells of s, each REPROJECTed with the back
-// depth hemicube (sec. 4.5.2) and sampling the back shot hemicube bilinearly within its face.
+// depth hemicube (sec. 4.5.2) and sampling the back shot hemicube bilinearly within its face; their
+// average is P(C, s, e), the area-weighted radiosity behind s (Eq. 3.3.2), or with RAD_CROSS_FF_WEIGHTS
+// (setting crossWeights=formFactor, bounce's) each ray weighted by its cell's form factor seen from e,
+// cos_e cos_s / (pi r^2 + A_cell): the split of F_se among what lies behind s that Eq. 3.3.1's
+// transitivity means, which the area average equals only where s is small against its distance to e.
 #include "techniques/radiosity/patch.glsl"
 #include "techniques/radiosity/hemicube.glsl"
 
@@ -103,27 +107,37 @@ vec4 sampleBack(uint k, bool old, vec3 d) {
 }
 
 // PROJECTEDRADIOSITY(s, e) of Alg. 4.5: P(C, s, e) of Eq. 3.3.2 by gridSize^2 reprojected rays.
-vec3 projectedRadiosity(uint k, RadShooterGpu s, bool old, vec3 x) {
+vec3 projectedRadiosity(uint k, RadShooterGpu s, bool old, vec3 x, vec3 n) {
     RadQuadGpu q = u_quads[s.info.x];
     mat4 M = radWorldFromObject(s.info.y, old);
+    vec3 ns = radNormalToWorld(s.info.y, old, s.normal.xyz);
     RadHemicubeGpu h = u_hemicubes[recordOf(k, old ? 2u : 3u)];
     int g = int(u_pass.counts.w);
+    bool ffWeights = (u_pass.slots.w & RAD_CROSS_FF_WEIGHTS) != 0u;
+    float cellArea = s.position.w / float(g * g);
     vec3 total = vec3(0.0);
+    float weights = 0.0;
     for (int j = 0; j < g; ++j)
         for (int i = 0; i < g; ++i) {
             vec2 st = mix(s.rect.xy, s.rect.zw, (vec2(i, j) + 0.5) / float(g));
             vec3 cell = (M * vec4(radPointAt(q, st), 1.0)).xyz;
             vec3 r = normalize(cell - x);
             vec3 dir = r;
-            if (u_pass.slots.w != 0u) {
+            if ((u_pass.slots.w & RAD_CROSS_REPROJECT) != 0u) {
                 // REPROJECT: the depth seen from the patch centre along r (r' parallel to r), taken as
                 // the distance along r from the ray's crossing of the patch.
                 float depth = sampleBack(k, old, r).a;
                 dir = cell + r * depth - h.origin.xyz;
             }
-            total += sampleBack(k, old, dir).rgb;
+            float w = 1.0;
+            if (ffWeights) {
+                vec3 d = cell - x;
+                w = max(dot(n, r), 0.0) * max(-dot(ns, r), 0.0) / (kPi * dot(d, d) + cellArea);
+            }
+            total += w * sampleBack(k, old, dir).rgb;
+            weights += w;
         }
-    return total / float(g * g);
+    return weights > 0.0 ? total / weights : vec3(0.0);
 }
 
 void main() {
@@ -158,9 +172,9 @@ void main() {
         } else {  // RAD_SHOOT_CROSS
             // Inserting M (sec. 4.5.2, after the initial solution without it) has no old position.
             if (u_pass.params.w == 0.0 && visibleOld(k, x, surface))
-                dB += (-s.shot.rgb + projectedRadiosity(k, s, true, x)) * formFactor(s, true, x, n);
+                dB += (-s.shot.rgb + projectedRadiosity(k, s, true, x, n)) * formFactor(s, true, x, n);
             if (visibleNew(k, x, surface))
-                dB += (s.total.rgb - projectedRadiosity(k, s, false, x)) * formFactor(s, false, x, n);
+                dB += (s.total.rgb - projectedRadiosity(k, s, false, x, n)) * formFactor(s, false, x, n);
         }
     }
     dB *= e.albedo.rgb;

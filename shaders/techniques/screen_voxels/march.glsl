@@ -23,7 +23,61 @@ bool voxelBitsSet(ivec2 texel, int s0, int s1) {
     return false;
 }
 
+#ifdef SV_OUTER_GRID
+// A second grid for the parts of segments outside the camera's frustum or its grid's depth range,
+// which the screen-space grid cannot see (area-light's voxelOutside: an orthographic grid over the
+// scene's and the lights' bounds, built like the first). A shader defines SV_OUTER_GRID before
+// including this file and has the grid bound at BINDING_UBO_VOXELS_OUTER / BINDING_TEX_VOXELS_OUTER;
+// a grid of 0 bits (grid.z) is empty (the setting off).
+layout(std140, binding = BINDING_UBO_VOXELS_OUTER) uniform OuterVoxelBlock { ScreenVoxelsGpu u_outerVoxels; };
+layout(binding = BINDING_TEX_VOXELS_OUTER) uniform usampler2DArray s_outerVoxels;
+
+// Near either end of a segment the outer grid holds the end's own surface (and, for a light set in a
+// ceiling, the ceiling): within this many of its voxels (the larger of a column's side and a slice's
+// depth) from an end the outer grid is not tested, as the origin bias keeps a ray off its own surface
+// in the camera's grid (an assumption).
+const float kOuterEndVoxels = 1.5;
+
+// Any bit of slices [s0, s1] set in the outer grid's column `texel`?
+bool outerBitsSet(ivec2 texel, int s0, int s1) {
+    for (int w = s0 / 32; w <= s1 / 32; ++w) {
+        int lo = max(s0 - 32 * w, 0), hi = min(s1 - 32 * w, 31);
+        uint mask = (hi == 31 ? 0xFFFFFFFFu : ((1u << uint(hi + 1)) - 1u)) & ~((1u << uint(lo)) - 1u);
+        uvec4 t = texelFetch(s_outerVoxels, ivec3(texel, w / 4), 0);
+        if ((t[w % 4] & mask) != 0u) return true;
+    }
+    return false;
+}
+
+// The outer grid's verdict on one march segment p0 -> p1 of the whole segment a -> b, tested as
+// voxelMarch tests its segments: the slices between its ends' depths (+- thickness) in the column
+// under its midpoint. Segments within kOuterEndVoxels of a or b are free.
+bool outerSegmentBlocked(vec3 a, vec3 b, vec3 p0, vec3 p1, int thickness) {
+    int bits = int(u_outerVoxels.grid.z);
+    if (bits < 1) return false;
+    vec2 res = u_outerVoxels.grid.xy;
+    // Column sides (m) of the orthographic grid: 2 / |d ndc / d world| per column count.
+    mat4 m4 = u_outerVoxels.clipFromWorld;
+    float column = max(2.0 / (length(vec3(m4[0][0], m4[1][0], m4[2][0])) * res.x),
+                       2.0 / (length(vec3(m4[0][1], m4[1][1], m4[2][1])) * res.y));
+    float skip = kOuterEndVoxels * max(column, u_outerVoxels.depth.w);
+    vec3 m = 0.5 * (p0 + p1);
+    if (distance(m, a) < skip || distance(m, b) < skip) return false;
+    vec4 cm = u_outerVoxels.clipFromWorld * vec4(m, 1.0);
+    vec2 ndc = cm.xy / cm.w;
+    if (cm.w <= 0.0 || any(greaterThan(abs(ndc), vec2(1.0)))) return false;
+    float z0 = -(u_outerVoxels.viewFromWorld * vec4(p0, 1.0)).z, z1 = -(u_outerVoxels.viewFromWorld * vec4(p1, 1.0)).z;
+    float u0 = (min(z0, z1) - u_outerVoxels.depth.x) * u_outerVoxels.depth.z;
+    float u1 = (max(z0, z1) - u_outerVoxels.depth.x) * u_outerVoxels.depth.z;
+    int s0 = max(int(floor(u0)) - thickness, 0), s1 = min(int(floor(u1)) + thickness, bits - 1);
+    if (s0 > s1) return false;
+    return outerBitsSet(clamp(ivec2((ndc * 0.5 + 0.5) * res), ivec2(0), ivec2(res) - 1), s0, s1);
+}
+#endif
+
 // Fraction of the segment a -> b (world) before its first occupied sample, 1.0 when it is free.
+// With SV_OUTER_GRID, the samples outside the camera's frustum or its grid's depth range are tested
+// in the outer grid instead of counting as free.
 float voxelMarch(vec3 a, vec3 b, int steps, int thickness) {
     vec4 ca = u_voxels.clipFromWorld * vec4(a, 1.0), cb = u_voxels.clipFromWorld * vec4(b, 1.0);
     float za = -(u_voxels.viewFromWorld * vec4(a, 1.0)).z, zb = -(u_voxels.viewFromWorld * vec4(b, 1.0)).z;
@@ -37,9 +91,14 @@ float voxelMarch(vec3 a, vec3 b, int steps, int thickness) {
         vec2 ndc = cm.xy / cm.w;
         float s0f = min(prevSlice, slice), s1f = max(prevSlice, slice);
         prevSlice = slice;
-        if (cm.w <= 0.0 || any(greaterThan(abs(ndc), vec2(1.0)))) continue;
         int s0 = max(int(floor(s0f)) - thickness, 0), s1 = min(int(floor(s1f)) + thickness, bits - 1);
-        if (s0 > s1) continue;
+        if (cm.w <= 0.0 || any(greaterThan(abs(ndc), vec2(1.0))) || s0 > s1) {
+#ifdef SV_OUTER_GRID
+            if (outerSegmentBlocked(a, b, mix(a, b, float(i - 1) / float(steps)), mix(a, b, t), thickness))
+                return (float(i) - 1.0) / float(steps);
+#endif
+            continue;
+        }
         ivec2 texel = clamp(ivec2((ndc * 0.5 + 0.5) * res), ivec2(0), ivec2(res) - 1);
         if (voxelBitsSet(texel, s0, s1)) return (float(i) - 1.0) / float(steps);
     }

@@ -9,7 +9,9 @@
 //                     bouncing square).
 //   "voxelize"        the screen-space binary voxelization of the view frustum, voxelColumns^2 columns x
 //                     voxelBits (thesis 128) linear depth slices, logical-OR blending (§5.3.3; shared
-//                     machinery, techniques/screen_voxels).
+//                     machinery, techniques/screen_voxels); with voxelOutside a second grid of the same
+//                     size, orthographic along the first light over the scene's and lights' bounds, for
+//                     the parts of rays outside the camera's frustum (a deviation).
 //   "min-max-mipmap"  the ch. 4 eye pyramid (depth derivative, normal min-max) down to coarsest (thesis:
 //                     incremental visibility starts at 64^2), and "lobe-mipmap" the BRDF-frequency
 //                     pyramid (min/max specular roughness per cell, §5.3.2.1).
@@ -28,19 +30,21 @@
 //   "discontinuity"   cells whose neighbourhood varies by more than colourThreshold are refined (§5.3.4).
 //   then the same loop over the specular buffer ("gather-specular": the separate Phong pass, lobe-miss
 //   culling, lobe-width refinement, 5x5 lobe-centred texture samples when fewer than 9 VPLs fall in
-//   the lobe; §5.3.2.1), and "final": emission + albedo/pi E + F S per pixel.
+//   the lobe; §5.3.2.1), and "final": the emitters box-filtered over each pixel (16 rays against the
+//   lights' rectangles, as the reference's pixels see them) + albedo/pi E + F S per pixel.
 // visibility=brute ray-marches every VPL at every cell (§5.3.3.1, the baseline of Fig. 5.4);
 // visibility=none is §5.3.2's V = 1.
 //
-// Deviations and assumptions (docs/techniques/area-light.md): bounce's BRDF is GGX, so the "Phong"
+// Deviations and assumptions (docs/techniques/area-light.md): Eq. 5.2's r^2 is kept at or above A / pi
+// (a near-field bound: no VPL gives more than pi L); bounce's BRDF is GGX, so the "Phong"
 // pass evaluates the GGX specular lobe and takes its width from the equivalent Phong exponent;
 // the specular pass multiplies a per-pixel Schlick Fresnel at the end; the specular pass ray-marches
 // its VPLs without bitstreams; the lobe samples of sharp lobes take the variance visibility of
 // §5.3.3.3 (24 queries of occluder-distance moments as ray fractions, 2x2 interleaved, 3x3 blur,
 // Chebyshev); visibility=shadow-maps is §5.4.6's rasterized baseline (a 64^2 paraboloid map per
 // VPL, "vpl-shadow-maps"); bitstreams are RGBA32UI image layers of 128 bits (the thesis: a 4 x 16-bit target for
-// 64 bits) written with image stores; the colour threshold compares radiance relative to the lights'
-// peak radiance; thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
+// 64 bits) written with image stores; the colour threshold compares a white receiver's radiance (the
+// display colour at 0 EV); thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
 // voxel depth range (the scene bounds in view space) are assumptions (the thesis gives none).
 // Only area lights are shaded: a scene with point, spot or directional lights or emissive materials
 // is refused, so that the output is the like-for-like counterpart of `bounce reference --bounces 0`.
@@ -52,9 +56,12 @@
 #include "gpu/ShaderLimits.h"
 
 #include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace bounce {
 
@@ -75,6 +82,11 @@ constexpr float kVplMapFarInDiagonals = 1.01f;
 // their texels' depths by centimetres. On cornell-box-area at 1024 VPLs 1e-3 lost 42 % of the
 // receivers' energy to acne, 1e-2 14 %, 2e-2 (2 cm there) 7 %, as much as the voxels' over-occlusion.
 constexpr float kVplMapDepthBias = 2e-2f;
+// The second voxel grid's box (voxelOutside) is the scene's and the lights' bounds grown by this
+// fraction of its diagonal, and at least kMinOuterExtent metres, each side (engineering choices: its
+// faces then lie inside the grid, and a flat scene still has a depth range).
+constexpr float kOuterGridMargin = 0.01f;
+constexpr float kMinOuterExtent = 1e-3f;
 
 gl::ProgramDesc fullscreen(std::string_view name, std::string_view fragment) {
     return {std::string(name), {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, std::string(fragment)}}};
@@ -96,6 +108,66 @@ gl::Texture arrayTexture(std::string_view name, glm::ivec2 size, int layers, GLe
     return gl::Texture::create(name, d);
 }
 
+// The view of the second voxel grid (voxelOutside): orthographic, along the first light's normal
+// (rays towards a light run mostly along it), over the scene's bounds and every shaded light's
+// rectangle, so that it holds every surface a segment from a receiver to a light can cross.
+render::View outerGridView(const render::SceneGpu& sceneGpu, const std::vector<Light>& lights,
+                           const std::vector<size_t>& shaded, glm::ivec2 columns) {
+    const Light& first = lights[shaded.front()];
+    const glm::vec3 n = first.areaNormal(), t = glm::normalize(first.edgeU), b = glm::cross(n, t);
+    glm::vec3 lo, hi;
+    sceneGpu.scene().bounds(sceneGpu.time(), lo, hi);
+    std::vector<glm::vec3> points;
+    for (int c = 0; c < 8; ++c) points.emplace_back((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    for (size_t i : shaded)
+        for (int c = 0; c < 4; ++c)
+            points.push_back(lights[i].position + ((c & 1) - 0.5f) * lights[i].edgeU + ((c >> 1) - 0.5f) * lights[i].edgeV);
+    glm::vec3 mn(std::numeric_limits<float>::max()), mx(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : points) {
+        const glm::vec3 q(glm::dot(p, t), glm::dot(p, b), glm::dot(p, n));
+        mn = glm::min(mn, q);
+        mx = glm::max(mx, q);
+    }
+    // A margin of kOuterGridMargin of the box's size (at least kMinOuterExtent) keeps its faces off the
+    // grid's borders.
+    const float margin = std::max(kOuterGridMargin * glm::length(mx - mn), kMinOuterExtent);
+    mn -= margin;
+    mx += margin;
+    render::View v;
+    for (int c = 0; c < 3; ++c) {  // rows t, b, n (GLM is column-major: [col][row])
+        v.viewFromWorld[c][0] = t[c];
+        v.viewFromWorld[c][1] = b[c];
+        v.viewFromWorld[c][2] = n[c];
+    }
+    v.viewFromWorld[3][2] = -mx.z;  // the eye on the box's +n face, looking along -n
+    v.nearPlane = 0.0f;
+    v.farPlane = mx.z - mn.z;
+    v.clipFromView = glm::ortho(mn.x, mx.x, mn.y, mx.y, v.nearPlane, v.farPlane);
+    v.eye = glm::vec3(glm::inverse(v.viewFromWorld)[3]);
+    v.viewport = columns;
+    return v;
+}
+
+// The window-pixel rectangle (x0, y0, x1, y1) around the shaded lights' images, one pixel wider each
+// side; the whole frame when a corner is at or behind the camera plane. The final pass box-filters the
+// emitters only inside it.
+glm::vec4 emitterRect(const render::View& camera, const std::vector<Light>& lights, const std::vector<size_t>& shaded,
+                      glm::ivec2 size) {
+    const glm::vec4 frame(0.0f, 0.0f, static_cast<float>(size.x), static_cast<float>(size.y));
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    const glm::mat4 clipFromWorld = camera.clipFromWorld();
+    for (size_t i : shaded)
+        for (int c = 0; c < 4; ++c) {
+            const glm::vec3 p = lights[i].position + ((c & 1) - 0.5f) * lights[i].edgeU + ((c >> 1) - 0.5f) * lights[i].edgeV;
+            const glm::vec4 h = clipFromWorld * glm::vec4(p, 1.0f);
+            if (!(h.w > 1e-6f)) return frame;
+            const glm::vec2 px = (glm::vec2(h) / h.w * 0.5f + 0.5f) * glm::vec2(size);
+            lo = glm::min(lo, px);
+            hi = glm::max(hi, px);
+        }
+    return glm::vec4(lo - 1.0f, hi + 1.0f);
+}
+
 }  // namespace
 
 void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
@@ -107,10 +179,11 @@ void AreaLightTechnique::visitSettings(SettingsVisitor& v) {
     v.field("shadowMapSize", m_shadowMapSize, "visibility=shadow-maps: texels per side of each VPL's map (thesis 64)", 8, 1024);
     v.field("interleave", m_interleave, "2x2 interleaved VPL subsets (§5.3.3.2)");
     v.field("incrementalStencil", m_incrementalStencil, "refine cells lit discontinuously, coarse to fine (§5.3.4); off: depth/normal/lobe criteria only");
-    v.field("colourThreshold", m_colourThreshold, "illumination discontinuity: neighbourhood range relative to the peak emitted radiance (Fig. 5.10: 0.005)", 0.0f, 1e9f);
+    v.field("colourThreshold", m_colourThreshold, "illumination discontinuity: neighbourhood range of a white receiver's radiance, W/(m^2 sr), the display colour at 0 EV (Fig. 5.10: 0.005)", 0.0f, 1e9f);
     v.field("bitCountFraction", m_bitCountFraction, "refine where at least this fraction of the VPLs is partially visible in a 3x3 neighbourhood (thesis 128 of 256); above 1: off", 0.0f, 2.0f);
     v.field("voxelColumns", m_voxelColumns, "voxel grid x/y resolution (thesis 128^2 .. 1024^2)", 1, 4096);
     v.field("voxelBits", m_voxelBits, "voxel depth bits per column, a multiple of 128 (thesis 128)", 128, 1024);
+    v.field("voxelOutside", m_voxelOutside, "a second grid along the lights holds what lies outside the camera's frustum, for the parts of rays there (deviation; off: the thesis's screen-space grid only, in which they are free)");
     v.field("voxelFootprint", m_voxelFootprint, "a fragment sets every depth slice its triangle spans in the pixel (deviation; off: the one slice at the pixel centre, the thesis)");
     v.field("raySteps", m_raySteps, "uniform samples per visibility ray (assumption)", 1, 256);
     v.field("rayThickness", m_rayThickness, "extra depth bits tested each side of a step (the thick ray; assumption)", 0, 64);
@@ -186,6 +259,9 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY(m_diffuse, nichols::MultiresBuffer::create());
     BOUNCE_TRY(m_specularBuffer, nichols::MultiresBuffer::create());
     BOUNCE_TRY(m_voxels, voxels::ScreenVoxels::create());
+    BOUNCE_TRY(m_outerVoxels, voxels::ScreenVoxels::create());
+    const gpu::ScreenVoxelsGpu noGrid{};  // 0 bits: march.glsl's outer grid is empty (voxelOutside off)
+    m_noOuterGrid = gl::Buffer::create("areaLight.noOuterGrid", sizeof(noGrid), &noGrid);
     BOUNCE_TRY(m_vplProgram, gl::Program::build({"areaLight.vpls", {{GL_COMPUTE_SHADER, "techniques/area_light/vpls.comp"}}}));
     BOUNCE_TRY(m_lobeProgram, gl::Program::build({"areaLight.lobePyramid", {{GL_COMPUTE_SHADER, "techniques/area_light/lobe_pyramid.comp"}}}));
     BOUNCE_TRY(m_classify, gl::Program::build({"areaLight.classify", {{GL_COMPUTE_SHADER, "techniques/area_light/classify.comp"}}}));
@@ -208,7 +284,6 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
 void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     gpu::AreaPassUniforms& u = m_uniforms;
     u = {};
-    m_peakRadiance = 0.0f;
     const std::vector<Light>& lights = ctx.sceneGpu.lights();
     for (size_t k = 0; k < m_lightIndices.size(); ++k) {
         const Light& l = lights[m_lightIndices[k]];
@@ -220,7 +295,6 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
         g.normal = glm::vec4(l.areaNormal(), l.area());
         g.radiance = glm::vec4(l.radiance, l.texture.textured() ? 1.0f : 0.0f);
         g.texture = glm::vec4(tex.width(), tex.height(), static_cast<float>(k) * m_vplsPerSide * m_vplsPerSide, m_vplsPerSide);
-        m_peakRadiance = std::max({m_peakRadiance, l.radiance.r, l.radiance.g, l.radiance.b});
     }
     const float visibility = m_visibility == "none"          ? AL_VIS_NONE
                              : m_visibility == "brute"       ? AL_VIS_BRUTE
@@ -235,7 +309,7 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     const float voxel = std::max(vg.depth.w, columnWidth);
     u.march = glm::vec4(m_raySteps, m_rayThickness, m_rayBias * voxel, visibility);
     u.refine = glm::vec4(m_colourThreshold, m_bitCountFraction * static_cast<float>(m_vplCount),
-                         m_incrementalStencil ? 1.0f : 0.0f, m_peakRadiance);
+                         m_incrementalStencil ? 1.0f : 0.0f, 0.0f);
     // The angle one camera pixel subtends (perspective: 2 tan(fov/2) / height, small-angle).
     const float pixelAngle = 2.0f / (ctx.camera.clipFromView[1][1] * static_cast<float>(m_size.y));
     u.lobe = glm::vec4(m_lobeThreshold, m_lobeVpls, m_lobeSpacing, pixelAngle);
@@ -243,6 +317,33 @@ void AreaLightTechnique::updateUniforms(FrameContext& ctx) {
     u.shadow = glm::vec4(kVplMapDepthBias, 0.0f, 0.0f, kVplMapFarInDiagonals * m_sceneDiagonal);
     m_passUbo.upload(0, sizeof(u), &u);
     m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
+}
+
+int AreaLightTechnique::vplsPerDraw() const {
+    // A ray costs at most raySteps march iterations, each testing up to voxelBits / 32 words of a
+    // column in the camera's grid and as many in the second grid, plus its VPL loop iteration: draws
+    // of at most half the shader loop budget (gpu/ShaderLimits.h; the other half covers a specular
+    // cell's 25 lobe samples and the region loops). With 64 steps and 128 bits, 56 VPLs a draw.
+    const int wordsPerTest = m_voxelBits / 32;
+    const int rayIterations = 1 + m_raySteps * (1 + 2 * wordsPerTest);
+    return std::max(1, gl::kShaderLoopIterationBudget / 2 / rayIterations);
+}
+
+void AreaLightTechnique::bindVoxels() {
+    m_voxels->bind();
+    if (m_voxelOutside) {
+        m_outerVoxels->bind(BINDING_UBO_VOXELS_OUTER, BINDING_TEX_VOXELS_OUTER);
+    } else {
+        m_noOuterGrid.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_VOXELS_OUTER);
+        m_voxels->bitsTexture().bind(BINDING_TEX_VOXELS_OUTER);  // never read: a valid texture there
+    }
+}
+
+void AreaLightTechnique::bindLightTextures(FrameContext& ctx) {
+    // Light i's texture at unit i of these (the specular gather and the final pass read them by light).
+    const unsigned units[AL_MAX_LIGHTS] = {BINDING_TEX_AREA_LIGHT, BINDING_TEX_INPUT0, BINDING_TEX_INPUT1, BINDING_TEX_INPUT2};
+    for (size_t i = 0; i < AL_MAX_LIGHTS; ++i)
+        ctx.lights.areaTexture(m_lightIndices[std::min(i, m_lightIndices.size() - 1)]).bind(units[i]);
 }
 
 void AreaLightTechnique::buildLobePyramid(FrameContext& ctx) {
@@ -333,7 +434,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
     counts.rendered.assign(static_cast<size_t>(levels), -1);
     counts.tree.assign(static_cast<size_t>(levels), -1);
     gl::Program& gather = specular ? m_gatherSpecular : m_gatherDiffuse;
-    if (m_visibility != "none") m_voxels->bind();
+    if (m_visibility != "none") bindVoxels();
     m_vpls.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
     m_stats.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
 
@@ -372,10 +473,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             m_pyramid->normal().bind(BINDING_TEX_TECH1);
             if (specular) {
                 m_lobe.bind(BINDING_TEX_TECH2);
-                const unsigned units[AL_MAX_LIGHTS] = {BINDING_TEX_AREA_LIGHT, BINDING_TEX_INPUT0, BINDING_TEX_INPUT1,
-                                                      BINDING_TEX_INPUT2};
-                for (size_t i = 0; i < AL_MAX_LIGHTS; ++i)
-                    ctx.lights.areaTexture(m_lightIndices[std::min(i, m_lightIndices.size() - 1)]).bind(units[i]);
+                bindLightTextures(ctx);
                 // One loop iteration per VPL plus up to raySteps march iterations for each: draws of at most
                 // half the shader loop budget (gpu/ShaderLimits.h).
                 const bool variance = m_varianceVisibility && m_visibility != "none";
@@ -393,7 +491,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                 }
                 gather.set("u_variance", variance ? 1 : 0);
                 gather.set("u_levelSize", size);
-                const int perDraw = std::max(1, gl::kShaderLoopIterationBudget / 2 / (m_raySteps + 2));
+                const int perDraw = vplsPerDraw();
                 const int batches = (m_vplCount + perDraw - 1) / perDraw;
                 counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, batches, [&](int b) {
                     gather.set("u_vplFirst", static_cast<unsigned>(b * perDraw));
@@ -406,14 +504,28 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                 gather.set("u_parentOrigin", parentOrigin);
                 gather.set("u_parentSize", parentSize);
                 gather.set("u_coarsest", coarsest);
-                // One draw per bitstream layer: 128 VPLs, each at most raySteps march iterations.
-                const auto setBatch = [&](int b) { gather.set("u_batch", b); };
+                // Draws of at most vplsPerDraw() VPLs of one bitstream layer each (the shader loop budget):
+                // a layer's later draws add their bits to the earlier ones' (the image barrier between).
+                std::vector<glm::ivec3> draws;  // layer, first VPL, end VPL (of the cell's subset)
+                const int perDraw = vplsPerDraw();
+                for (int layer = 0; layer < m_layers; ++layer) {
+                    const int end = std::min(m_perCell, (layer + 1) * SV_BITS_PER_LAYER);
+                    for (int first = layer * SV_BITS_PER_LAYER; first < end; first += perDraw)
+                        draws.emplace_back(layer, first, std::min(end, first + perDraw));
+                }
+                const auto setBatch = [&](int b) {
+                    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                    gather.set("u_batch", draws[static_cast<size_t>(b)].x);
+                    gather.set("u_vplBegin", draws[static_cast<size_t>(b)].y);
+                    gather.set("u_vplEnd", draws[static_cast<size_t>(b)].z);
+                };
+                const int batches = static_cast<int>(draws.size());
                 gather.set("u_shade", 1);
-                counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, m_layers, setBatch);
+                counts.rendered[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 1, batches, setBatch);
                 if (incremental) {
                     gather.set("u_shade", 0);
                     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-                    counts.tree[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 2, m_layers, setBatch);
+                    counts.tree[static_cast<size_t>(k)] = buffer.drawLevel(k, gather, 2, batches, setBatch);
                     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
                 }
                 glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -450,11 +562,12 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
             buffer.result().bind(BINDING_TEX_TECH0);
             m_flags.bindImage(BINDING_IMG1, GL_READ_WRITE);
-            const float peak = std::max(m_peakRadiance, 1e-12f);
             m_discontinuity.set("u_level", k);
             m_discontinuity.set("u_levelOrigin", origin);
             m_discontinuity.set("u_size", size);
-            m_discontinuity.set("u_scale", specular ? 1.0f / peak : 1.0f / (3.14159265f * peak));
+            // Display colours at bounce's default exposure (0 EV: 1 W/(m^2 sr) is about display white): the
+            // specular buffer holds radiance / F, the diffuse one irradiance, E / pi for a white receiver.
+            m_discontinuity.set("u_scale", specular ? 1.0f : 1.0f / glm::pi<float>());
             m_discontinuity.use();
             glDispatchCompute(groups(size.x), groups(size.y), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -472,7 +585,10 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     m_stats.clearZero();
     if (m_visibility != "none") {
         auto s = ctx.timers.scope("voxelize");
-        m_voxels->build(ctx.drawer, ctx.camera, {glm::ivec2(m_voxelColumns), m_voxelBits, m_voxelFootprint});
+        const voxels::GridSize grid{glm::ivec2(m_voxelColumns), m_voxelBits, m_voxelFootprint};
+        if (m_voxelOutside)
+            m_outerVoxels->build(ctx.drawer, outerGridView(ctx.sceneGpu, ctx.sceneGpu.lights(), m_lightIndices, grid.columns), grid);
+        m_voxels->build(ctx.drawer, ctx.camera, grid);
     }
     updateUniforms(ctx);
     if (m_visibility == "shadow-maps") {
@@ -518,6 +634,8 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
         m_passUbo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_PASS);
         m_diffuse->result().bind(BINDING_TEX_TECH0);
         (specular ? m_specularBuffer->result() : m_diffuse->result()).bind(BINDING_TEX_TECH1);
+        bindLightTextures(ctx);
+        m_final.set("u_emitterRect", emitterRect(ctx.camera, ctx.sceneGpu.lights(), m_lightIndices, m_size));
         m_final.set("u_hasSpecular", specular ? 1 : 0);
         m_final.use();
         gl::Context::current()->bindEmptyVertexArray();
@@ -535,8 +653,12 @@ void AreaLightTechnique::collectCounters(Counters& c) {
     c["raysReused"] = stats[AL_STAT_RAYS_REUSED];
     c["raysCulled"] = stats[AL_STAT_RAYS_CULLED];
     c["lobeSampledCells"] = stats[AL_STAT_LOBE_SAMPLED];
+    // Partially visible VPLs over the VPLs examined (those whose subset had two or more tree cells in
+    // the region; every VPL of an interior cell), summed over the tree cells of every level.
+    c["partiallyVisibleVpls"] = stats[AL_STAT_PARTIAL_VPLS];
+    c["examinedVpls"] = stats[AL_STAT_EXAMINED_VPLS];
     c["partiallyVisibleFraction"] =
-        stats[AL_STAT_TREE_CELLS] > 0 ? double(stats[AL_STAT_PARTIAL_VPLS]) / (double(stats[AL_STAT_TREE_CELLS]) * m_vplCount) : 0.0;
+        stats[AL_STAT_EXAMINED_VPLS] > 0 ? double(stats[AL_STAT_PARTIAL_VPLS]) / double(stats[AL_STAT_EXAMINED_VPLS]) : 0.0;
     const auto count = [](const nichols::MultiresBuffer& b, int ticket) { return ticket < 0 ? 0.0 : b.fragments(ticket); };
     double diffuseTotal = 0.0, specularTotal = 0.0;
     for (size_t k = 0; k < m_frameDiffuse.rendered.size(); ++k) {

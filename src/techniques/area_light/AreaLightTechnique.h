@@ -26,6 +26,13 @@ public:
 
     static constexpr std::array<std::string_view, 4> kVisibilityModes{"incremental", "brute", "none", "shadow-maps"};
 
+    // For tests: the last frame's cell flags (R32UI over the multiresolution atlas, AL_CELL_*) and VPL
+    // bitstreams (RGBA32UI atlas array, 128 VPLs of a cell's subset per layer) of the diffuse pass,
+    // unless a specular pass ran after it (it reuses the flags), and the diffuse buffer's atlas layout.
+    const gl::Texture& cellFlags() const { return m_flags; }
+    const gl::Texture& bitstreams() const { return m_bits; }
+    const nichols::MultiresBuffer& diffuseBuffer() const { return *m_diffuse; }
+
 
 private:
     // Fragment-count tickets per level (nichols::MultiresBuffer::fragments), read by collectCounters:
@@ -35,6 +42,9 @@ private:
     };
     void updateUniforms(FrameContext& ctx);
     void buildLobePyramid(FrameContext& ctx);
+    void bindLightTextures(FrameContext& ctx);
+    void bindVoxels();
+    int vplsPerDraw() const;
     void renderVplShadowMaps(FrameContext& ctx);
     // The coarse-to-fine level loop of §5.3.4 over one buffer (diffuse or specular).
     PassCounts renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer, bool specular);
@@ -51,7 +61,8 @@ private:
     int m_voxelColumns = 128;          // §5.3.3: 128^2 "almost indistinguishable" from 1024^2
     int m_voxelBits = 128;             // §5.3.3: 128 bits per pixel
     bool m_voxelFootprint = true;      // deviation: fragments set the slices they span (voxelize.frag)
-    int m_raySteps = 32;               // assumption (not given; 16 misses thin walls at 128^2, docs)
+    bool m_voxelOutside = true;        // deviation: a second grid along the lights beyond the camera's frustum
+    int m_raySteps = 64;               // assumption (not given; 32 leak light past the Cornell short block's corner, docs)
     int m_rayThickness = 0;            // extra bits each side of a step's slice span (assumption; 1 over-occludes, docs)
     float m_rayBias = 1.5f;            // voxels (assumption; "bias", Fig. 5.12)
     bool m_specular = true;            // §5.3.2.1: separate Phong pass
@@ -65,7 +76,8 @@ private:
 
     std::optional<nichols::MinMaxPyramid> m_pyramid;
     std::optional<nichols::MultiresBuffer> m_diffuse, m_specularBuffer;
-    std::optional<voxels::ScreenVoxels> m_voxels;
+    std::optional<voxels::ScreenVoxels> m_voxels, m_outerVoxels;
+    gl::Buffer m_noOuterGrid;  // an empty grid's uniforms, bound when voxelOutside is off
     gl::Program m_vplProgram, m_lobeProgram, m_classify, m_stencil, m_gatherDiffuse, m_gatherSpecular, m_resolve,
         m_discontinuity, m_final;
     gl::Buffer m_passUbo, m_vpls, m_stats;
@@ -79,7 +91,6 @@ private:
     gpu::AreaPassUniforms m_uniforms{};
     std::vector<size_t> m_lightIndices;  // scene light index of each area light shaded
     int m_vplCount = 0, m_perCell = 0, m_layers = 0;
-    float m_peakRadiance = 0.0f;
     bool m_hasSpecularMaterials = false;
     glm::ivec2 m_size{0};
     PassCounts m_frameDiffuse, m_frameSpecular;  // this frame's tickets, for collectCounters

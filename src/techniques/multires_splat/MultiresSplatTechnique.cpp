@@ -9,7 +9,8 @@
 // level that splits refined subsplats into their four children, captured by transform feedback into
 // ping-pong buffers; refinePass=compute, the default: refine.comp, one atomic-append dispatch per pass and
 // indirect draws, same decision, refine.glsl), "splat" (the shared list drawn as GL_POINTS once per VPL into the flattened
-// multiresolution buffer, additive, Eq. 3.2 with the r^2 clamp; splatPrimitive=stencil: the list's
+// multiresolution buffer, additive, Eq. 4.1's disk form factor (formFactor=disk, bounce's default) or
+// Eq. 3.2 with the r^2 clamp (point); splatPrimitive=stencil: the list's
 // points mark the atlas stencil and each VPL is one stencilled triangle per level, §4.2.1.1's stencilled
 // splat, the same pairs, VPLs read from uniform-block windows, nichols/VplWindow.h; splatPrimitive=auto, the
 // default, is stencil for mode B and points for mode A), "upsample"
@@ -95,7 +96,11 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
             "or geometry (the thesis's geometry shader with transform feedback); same subsplats, same image",
             kRefinePasses);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
-    v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2, metres (assumption)", 0.0f, 10.0f);
+    v.field("formFactor", m_formFactor,
+            "disk: Eq. 4.1's disk-to-point form factor, as the rsm gather (bounce's default; the VPL's patch area bounds the "
+            "near field); point: Eq. 3.2 with the r^2 clamp minDistance (the thesis's ch. 3)",
+            kFormFactors);
+    v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2 (formFactor=point), metres (assumption)", 0.0f, 10.0f);
     v.field("detailModulation", m_detailModulation, "Eq. 3.3: modulate indirect light by alpha <V,N> + (1 - alpha) (§3.3.3)");
     v.field("detailAlpha", m_detailAlpha, "Eq. 3.3's alpha (thesis 0.5, Fig. 3.9)", 0.0f, 1.0f);
     v.field("depthThreshold", m_thresholds.depth, "max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
@@ -264,6 +269,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             refine.set("u_perVpl", perVpl ? 1 : 0);
             refine.set("u_relativeThreshold", m_illuminationContrast);
             refine.set("u_minDistance2", m_minDistance * m_minDistance);
+            refine.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
             refine.set("u_gbufferScale", m_eye->scale());
             const glm::ivec2 top = m_eye->levelSize(levels - 1);
             if (computeRefine) {
@@ -357,6 +363,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             points.set("u_origins", origins);
             points.set("u_atlasSize", m_buffer->atlasSize());
             points.set("u_minDistance2", m_minDistance * m_minDistance);
+            points.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
             points.set("u_gbufferScale", m_eye->scale());
             points.set("u_perVpl", perVpl ? 1 : 0);
             if (m_primitive != "stencil") points.set("u_glossy", glossy ? 1 : 0);
@@ -381,6 +388,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                 glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
                 glDisable(GL_STENCIL_TEST);
                 m_splatStencil.set("u_minDistance2", m_minDistance * m_minDistance);
+                m_splatStencil.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
                 m_visibility->setUniforms(m_splatStencil);
                 // One window of VPLs per instanced draw (nichols/VplWindow.h), one draw per level.
                 const int perDraw = nichols::VplWindow::perDraw(vplCount);

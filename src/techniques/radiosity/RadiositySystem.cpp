@@ -502,7 +502,8 @@ void RadiositySystem::reconstruct(int mode, int receivers, uint32_t first, uint3
                          static_cast<uint32_t>(m_options.visibilitySamples));
     u.counts = glm::uvec4(static_cast<uint32_t>(m_model.elements().size()), static_cast<uint32_t>(m_options.hemicubeSize),
                           static_cast<uint32_t>(m_options.backSize), static_cast<uint32_t>(m_options.crossGrid));
-    u.slots = glm::uvec4(first, 0u, 0u, m_options.reprojection ? 1u : 0u);
+    u.slots = glm::uvec4(first, 0u, 0u,
+                         (m_options.reprojection ? RAD_CROSS_REPROJECT : 0u) | (m_options.crossFormFactorWeights ? RAD_CROSS_FF_WEIGHTS : 0u));
     u.params = glm::vec4(m_options.ffSubdivideRatio, static_cast<float>(m_options.ffSubdivisions), static_cast<float>(m_options.msaa),
                          insert ? 1.0f : 0.0f);
     m_pass.upload(0, sizeof(u), &u);
@@ -575,6 +576,14 @@ std::vector<glm::vec3> RadiositySystem::readAtlas(const gl::Texture& t) const {
 }
 
 std::vector<glm::vec3> RadiositySystem::readTotal() const { return readAtlas(m_total); }
+
+std::vector<gpu::RadHemicubeGpu> RadiositySystem::readHemicubeRecords(uint32_t role, uint32_t count) const {
+    BOUNCE_CHECK(role < kRoles && count <= kBatch, "hemicube records role {} count {}", role, count);
+    std::vector<gpu::RadHemicubeGpu> out(count);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    m_records.download(role * kBatch * sizeof(gpu::RadHemicubeGpu), count * sizeof(gpu::RadHemicubeGpu), out.data());
+    return out;
+}
 std::vector<glm::vec3> RadiositySystem::readUnshot() const { return readAtlas(m_unshot); }
 
 }  // namespace bounce::radiosity

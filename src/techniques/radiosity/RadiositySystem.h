@@ -29,6 +29,7 @@ struct SystemOptions {
     int ffSubdivisions = 8;          // sub-disks per side then
     int crossGrid = 4;              // PROJECTEDRADIOSITY gridSize (sec. 4.5.2: 4)
     bool reprojection = true;
+    bool crossFormFactorWeights = false;  // crossWeights=formFactor (bounce's option)
 };
 
 // Per-quad sums read back for FINDSHOOTINGQUAD (radiance x area, W/sr per channel).
@@ -90,6 +91,8 @@ public:
     // Tests: element radiosity B and Bu read back (one per element, in element order).
     std::vector<glm::vec3> readTotal() const;
     std::vector<glm::vec3> readUnshot() const;
+    // Tests: the hemicube records of role `role` (gather: 0; shooters: 0-3) as the last batch placed them.
+    std::vector<gpu::RadHemicubeGpu> readHemicubeRecords(uint32_t role, uint32_t count) const;
     uint32_t hemicubesRendered() const { return m_hemicubes; }
     void resetCounters() { m_hemicubes = 0; }
     float emittedPower() const { return m_emittedPower; }  // sum of A E luminance over emitters

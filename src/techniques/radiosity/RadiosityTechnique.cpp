@@ -72,9 +72,6 @@ void RadiosityTechnique::visitSettings(SettingsVisitor& v) {
     v.field("borderInset", m_options.patches.borderInset, "border elements' sample moved inward, texel pitches (thesis: corners only, 'a small offset'; docs say why all borders)", 0.0f, 0.5f);
     v.field("hemicubeSize", m_options.hemicubeSize, "hemicube top-face pixels per side; side faces are half as high (thesis: 64)", 4, 512);
     v.field("randomRotation", m_options.randomRotation, "rotate each hemicube about its normal by a hash of its position (thesis sec. 4.2)");
-    v.field("visibilitySamples", m_options.visibilitySamples, "ID-hemicube pixels tested per receiver: 4 nearest (thesis sec. 5.2.1) or 1", 1, 4);
-    v.field("ffSubdivideRatio", m_options.ffSubdivideRatio, "split the disk approximation when shooter area / distance^2 exceeds this (thesis: threshold not given)", 0.0f, 1e6f);
-    v.field("ffSubdivisions", m_options.ffSubdivisions, "sub-disks per side when split", 1, 8);
     v.field("view", m_view, "display filter of the radiosity textures: bilinear (thesis) or nearest (Fig. 4.1.1 debug view)", kViews);
     visitMethodSettings(v);
 }
@@ -94,7 +91,7 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
 }
 
 void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
-    m_frameShooters = m_frameIterations = m_frameMovingPatches = 0;
+    m_frameShooters = m_frameIterations = m_frameMovingPatches = m_frameRedistributionHemicubes = 0;
     m_system->resetCounters();
     {
         auto s = ctx.timers.scope("radiosity.solve");
@@ -114,6 +111,7 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     ctx.counters["converged"] = m_converged ? 1.0 : 0.0;
     ctx.counters["movingElements"] = static_cast<double>(m_system->movingElementCount());
     ctx.counters["movingPatches"] = m_frameMovingPatches;
+    ctx.counters["redistributionHemicubes"] = m_frameRedistributionHemicubes;
 }
 
 std::vector<ShooterRect> RadiosityTechnique::subdivide(uint32_t quad, float flux) const {

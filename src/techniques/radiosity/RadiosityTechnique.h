@@ -36,6 +36,7 @@ public:
     uint32_t lastHemicubes() const { return m_frameHemicubes; }
     uint32_t lastIterations() const { return m_frameIterations; }
     uint32_t lastMovingPatches() const { return m_frameMovingPatches; }
+    uint32_t lastRedistributionHemicubes() const { return m_frameRedistributionHemicubes; }
 
 protected:
     // One frame of the method: update the solution in the system's atlas.
@@ -72,6 +73,7 @@ protected:
 
     uint32_t m_frameHemicubes = 0, m_frameShooters = 0, m_frameIterations = 0;
     uint32_t m_frameMovingPatches = 0;  // shooting patches of M in this frame's redistribution
+    uint32_t m_frameRedistributionHemicubes = 0;  // hemicubes of the redistribution alone (incremental, cross)
     bool m_converged = false;
     float m_maxEmission = 0.0f;  // brightest emitter radiance (luminance), W/(m^2 sr)
 };

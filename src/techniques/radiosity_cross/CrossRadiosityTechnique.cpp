@@ -15,10 +15,20 @@
 //   (the equation's sign for the new term; Alg. 4.5 as printed adds P there, docs say why not).
 //   PROJECTEDRADIOSITY: gridSize^2 rays through s, REPROJECTed with the back distance hemicube.
 // Initial solution (sec. 4.5.2): progressive refinement with the animated bodies REMOVED (not drawn
-// into hemicubes, not shooting or receiving), then one insertion redistribution (new terms only),
-// so the static shot radiosity never changes afterwards and the non-incremental cross projection
-// cannot accumulate error: no PR iteration runs after that (none is needed for the redistribution,
-// sec. 4.5.1; static-to-static light changed by M reaches one bounce, as in the thesis).
+// into hemicubes, not shooting or receiving), then one insertion redistribution (new terms only).
+// Regular progressive propagation (sec. 3.1: "ordinary progressive iterations are still needed
+// afterwards to propagate the changes"; sec. 3.3.4: the radiosity gathered during a redistribution "is
+// shot during the regular progressive propagation"): after the insertion and after every
+// redistribution, progressive refinement runs to the threshold with M in place, shooting the unshot
+// radiosity the redistribution left (C's new shadows are negative unshot radiosity). Without it C's
+// shot radiosity stayed the M-free solution for ever: R_g(C, M) gathered unshadowed surroundings (the
+// rotating box's faces 15-55 % too bright), which weakened the shadows cast through M and left every
+// second bounce of the change out (docs/techniques/radiosity.md, "Cross redistribution's error").
+// As in the thesis, M is not removed and re-inserted around these iterations ("costly, ... only for
+// the initial radiosity propagation"), so C's shot radiosity changes between redistributions and the
+// negation of the old position is exact only to that change (measured: no growth over 200 frames).
+// No PR iteration is part of the redistribution itself (sec. 4.5.3): its 4 |M| hemicubes are counted
+// apart (redistributionHemicubes); `propagate=false` leaves the iterations out.
 #include "techniques/radiosity_cross/CrossRadiosityTechnique.h"
 
 namespace bounce {
@@ -38,6 +48,13 @@ void CrossRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
     v.field("msaa", m_msaa, "samples of the back hemicubes, resolved as a blur (thesis: 4)", 1, 16);
     v.field("crossGrid", m_grid, "PROJECTEDRADIOSITY gridSize: gridSize^2 rays per patch (thesis: 4)", 1, 16);
     v.field("reprojection", m_reprojection, "REPROJECT the rays with the back distance hemicube (thesis Fig. 4.5.3; off samples the ray direction itself)");
+    v.field("crossWeights", m_weights,
+            "PROJECTEDRADIOSITY's average over the rays: area (thesis, Eq. 3.3.2's area-weighted sum) or formFactor (each ray "
+            "weighted by its cell's form factor seen from the receiver; bounce's, exact where the patch is large against its distance)",
+            kWeights);
+    v.field("propagate", m_propagate,
+            "progressive refinement to the threshold after each redistribution, shooting the unshot radiosity it left (the "
+            "thesis's regular progressive propagation, sec. 3.1 / 3.3.4); off: the redistribution alone");
 }
 
 void CrossRadiosityTechnique::adjustOptions(SystemOptions& o) const {
@@ -45,6 +62,7 @@ void CrossRadiosityTechnique::adjustOptions(SystemOptions& o) const {
     o.msaa = m_msaa;
     o.crossGrid = m_grid;
     o.reprojection = m_reprojection;
+    o.crossFormFactorWeights = m_weights == "formFactor";
 }
 
 void CrossRadiosityTechnique::solve(FrameContext& ctx) {
@@ -59,16 +77,19 @@ void CrossRadiosityTechnique::solve(FrameContext& ctx) {
         progressiveRefinement(ctx, m_maxIterations, 0, true);
         if (m_system->anyMoving()) redistribute(ctx, true);
         m_system->setMovingOverride(nullptr);
+        if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
         m_system->commit();
         m_initialised = true;
         return;
     }
     m_system->beginFrame(ctx.scene, ctx.time);
     if (m_system->anyMoving()) redistribute(ctx, false);
+    if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
     m_system->commit();
 }
 
 void CrossRadiosityTechnique::redistribute(FrameContext& ctx, bool insert) {
+    const uint32_t hemicubesBefore = m_system->hemicubesRendered();
     const PatchModel& pm = m_system->patches();
     std::vector<ShooterRect> patches;
     for (uint32_t q = 0; q < pm.quads().size(); ++q) {
@@ -104,6 +125,7 @@ void CrossRadiosityTechnique::redistribute(FrameContext& ctx, bool insert) {
     }
     m_frameShooters += np;
     m_frameMovingPatches = np;
+    m_frameRedistributionHemicubes += m_system->hemicubesRendered() - hemicubesBefore;
 }
 
 }  // namespace bounce

@@ -14,6 +14,7 @@ public:
     static constexpr float kDefaultDynamicElementSize = 0.15f;  // metres
 
     uint32_t lastPatches() const { return m_frameMovingPatches; }
+    static constexpr std::array<std::string_view, 2> kWeights{"area", "formFactor"};
 
 protected:
     void solve(FrameContext& ctx) override;
@@ -28,6 +29,8 @@ private:
     int m_msaa = 4;
     int m_grid = 4;
     bool m_reprojection = true;
+    std::string m_weights{"area"};  // PROJECTEDRADIOSITY's ray weights: area (Eq. 3.3.2, the thesis) or formFactor
+    bool m_propagate = true;        // the regular progressive propagation after each redistribution (sec. 3.1, 3.3.4)
     bool m_initialised = false;
     std::vector<char> m_animated;
 };

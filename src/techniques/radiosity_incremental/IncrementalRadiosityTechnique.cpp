@@ -42,6 +42,7 @@ void IncrementalRadiosityTechnique::solve(FrameContext& ctx) {
 }
 
 void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {
+    const uint32_t hemicubesBefore = m_system->hemicubesRendered();
     const auto& quads = m_system->patches().quads();
     const float pi = glm::pi<float>();
     // 1. M shoots its negative shot radiosity to C with the old form factors.
@@ -85,6 +86,7 @@ void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {
         }
         m_frameShooters += ns;
     }
+    m_frameRedistributionHemicubes = m_system->hemicubesRendered() - hemicubesBefore;
 }
 
 }  // namespace bounce

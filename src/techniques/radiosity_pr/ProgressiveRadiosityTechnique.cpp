@@ -13,6 +13,11 @@
 namespace bounce {
 
 void ShootingRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
+    // The reconstruction pass's settings: radiosity-gather never reconstructs, so it does not declare them
+    // (and refuses them as unknown settings).
+    v.field("visibilitySamples", m_options.visibilitySamples, "ID-hemicube pixels tested per receiver: 4 nearest (thesis sec. 5.2.1) or 1", 1, 4);
+    v.field("ffSubdivideRatio", m_options.ffSubdivideRatio, "split the disk approximation when shooter area / distance^2 exceeds this (thesis: threshold not given)", 0.0f, 1e6f);
+    v.field("ffSubdivisions", m_options.ffSubdivisions, "sub-disks per side when split", 1, 8);
     v.field("threshold", m_threshold, "convergence: stop when the brightest quad's mean unshot radiance is below this fraction of the brightest emitter's (thesis: value not given)", 0.0f, 1.0f);
     v.field("maxIterations", m_maxIterations, "shooting quads per frame at most (Alg. 4.2 iterations)", 1, 1000000);
     v.field("shooterFlux", m_shooterFlux, "dynamic shooter subdivision: a patch carries at most about this fraction of the emitted flux (thesis: mapping not given)", 1e-6f, 1.0f);

@@ -42,7 +42,8 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
             "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
     m_visibilitySettings.visit(v);
-    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, capped by one uniform-block window of the cache (1024 VPLs) and the shader loop budget (65535 loop iterations per invocation on llvmpipe), rounded down to a multiple of 16; batches are added by blending (same sum, bounded draw time)", 1, 1 << 24);
+    v.field("vplBatch", m_vplBatch, "VPLs per gather draw, capped by one uniform-block window of the cache (1024 VPLs) and the shader loop budget (65535 loop iterations per invocation on llvmpipe), rounded down to a multiple of 16; batches are added by blending (same sum, bounded draw time)", 1, 1 << 24,
+            PerProfile<int>{kVplBatchLlvmpipe, kVplBatchGpu});
 }
 
 Expected<void> RsmTechnique::setup(const SetupContext&) {
@@ -51,10 +52,11 @@ Expected<void> RsmTechnique::setup(const SetupContext&) {
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
     // A draw sums at least one VPL; one whose march alone passes the shader loop budget would lose light
-    // on llvmpipe (gpu/ShaderLimits.h).
-    if (1 + m_visibility->loopIterationsPerTest() + 1 > gl::kShaderLoopIterationBudget)
-        return makeError("vplVisibility: one VPL's {} march iterations pass the shader loop budget of {}; lower raySteps or voxelBits",
-                         m_visibility->loopIterationsPerTest(), gl::kShaderLoopIterationBudget);
+    // on llvmpipe (gpu/ShaderLimits.h; the device's budget: llvmpipe's 65535, a GPU's 2^24).
+    const int budget = gl::shaderLoopIterationBudget();
+    if (1 + m_visibility->loopIterationsPerTest() + 1 > budget)
+        return makeError("vplVisibility: one VPL's {} march iterations pass the shader loop budget of {} ({} profile); lower raySteps or voxelBits",
+                         m_visibility->loopIterationsPerTest(), budget, profileName(gl::currentProfile()));
     BOUNCE_TRY(m_gather, gl::Program::build({"rsm.gather",
                                              {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                               {GL_FRAGMENT_SHADER, "techniques/rsm/gather.frag"}},
@@ -98,7 +100,7 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     // (also clearing pixels without geometry), the others add.
     const int count = m_vpls->count();
     const int perVpl = 1 + m_visibility->loopIterationsPerTest();
-    const int perDraw = nichols::VplWindow::perDraw(std::min(m_vplBatch, (gl::kShaderLoopIterationBudget - 1) / perVpl));
+    const int perDraw = nichols::VplWindow::perDraw(std::min(m_vplBatch, (gl::shaderLoopIterationBudget() - 1) / perVpl));
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);

@@ -36,10 +36,14 @@ private:
     std::string m_formFactor{"disk"};
     float m_minDistance = 0.05f;  // metres; Eq. 3.2's r^2 clamp, value not given (assumption)
     bool m_glossy = false;        // the thesis's gather is Lambertian; on = full BRDF (multires-splat mode A's limit)
-    // VPLs per gather draw: half of llvmpipe's 65535-iteration loop budget per invocation (gpu/
-    // ShaderLimits.h); 32k VPLs over a 64^2 image take a few seconds on llvmpipe, a GPU milliseconds,
-    // well under its ~2 s watchdog. Engineering choice, not from the thesis.
-    int m_vplBatch = 32768;
+    // VPLs per gather draw, per device profile (core/DeviceProfile.h). llvmpipe: half of its
+    // 65535-iteration loop budget per invocation (gpu/ShaderLimits.h); 32k VPLs over a 64^2 image take a
+    // few seconds on llvmpipe. GPU: one uniform-block window of the cache (nichols/VplWindow.h, 1024
+    // VPLs), which caps a draw on llvmpipe too: a 1080p draw of 1024 VPLs is ~2 G loop iterations, about
+    // 0.5 s on an integrated GPU, under the ~2 s watchdog. Engineering choices, not from the thesis.
+    static constexpr int kVplBatchLlvmpipe = 32768;
+    static constexpr int kVplBatchGpu = 1024;
+    int m_vplBatch = kVplBatchLlvmpipe;
     voxels::VplVisibilitySettings m_visibilitySettings;  // beyond the thesis; off by default
     std::optional<voxels::VplVisibility> m_visibility;
     std::optional<nichols::ReflectiveShadowMap> m_rsm;

@@ -102,9 +102,9 @@ void ScreenVoxels::build(render::SceneDrawer& drawer, const render::View& camera
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
-void ScreenVoxels::bind() const {
-    m_ubo.bindBase(GL_UNIFORM_BUFFER, BINDING_UBO_VOXELS);
-    m_bits.bind(BINDING_TEX_VOXELS);
+void ScreenVoxels::bind(unsigned uboBinding, unsigned textureUnit) const {
+    m_ubo.bindBase(GL_UNIFORM_BUFFER, uboBinding);
+    m_bits.bind(textureUnit);
 }
 
 uint64_t ScreenVoxels::countOccupied() const {

@@ -6,6 +6,7 @@
 // Shared machinery: the area-light technique's visibility (ch. 5) and the optional VPL visibility of
 // the RSM-family gathers use it.
 #include "core/Error.h"
+#include "gpu/Bindings.h"
 #include "gpu/Program.h"
 #include "render/SceneDrawer.h"
 #include "techniques/screen_voxels/screen_voxels_shared.h"
@@ -33,8 +34,10 @@ public:
     // and clipped to the camera's near and far planes (slices are wasted on nothing outside the scene;
     // an assumption, the thesis does not say).
     void build(render::SceneDrawer& drawer, const render::View& camera, const GridSize& size);
-    // Binds the grid (BINDING_UBO_VOXELS, BINDING_TEX_VOXELS) for march.glsl.
-    void bind() const;
+    // Binds the grid for march.glsl: at BINDING_UBO_VOXELS and BINDING_TEX_VOXELS (the grid it marches),
+    // or at other points (a second grid, march.glsl SV_OUTER_GRID). build() leaves the grid bound at
+    // BINDING_UBO_VOXELS.
+    void bind(unsigned uboBinding = BINDING_UBO_VOXELS, unsigned textureUnit = BINDING_TEX_VOXELS) const;
     const gpu::ScreenVoxelsGpu& uniforms() const { return m_uniforms; }
     const gl::Texture& bitsTexture() const { return m_bits; }
     // Occupied voxels (a CPU read-back of every column's popcount: for tests, not per frame).

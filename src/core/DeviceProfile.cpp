@@ -1,0 +1,26 @@
+#include "core/DeviceProfile.h"
+
+namespace bounce {
+
+std::string_view profileName(DeviceProfile p) { return p == DeviceProfile::Llvmpipe ? "llvmpipe" : "gpu"; }
+
+Expected<DeviceProfile> parseProfile(std::string_view text, std::string_view source) {
+    if (text == "llvmpipe") return DeviceProfile::Llvmpipe;
+    if (text == "gpu") return DeviceProfile::Gpu;
+    return makeError("{}='{}' is not a device profile (llvmpipe or gpu)", source, text);
+}
+
+DeviceProfile profileOfRenderer(std::string_view renderer) {
+    // Mesa's software rasterisers name themselves in GL_RENDERER ("llvmpipe (LLVM 15.0.6, 256 bits)",
+    // "softpipe", "Software Rasterizer"); zink over lavapipe says "zink (llvmpipe ...)" or "lavapipe".
+    for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "lavapipe", "Software Rasterizer"})
+        if (renderer.find(name) != std::string_view::npos) return DeviceProfile::Llvmpipe;
+    return DeviceProfile::Gpu;
+}
+
+Expected<DeviceProfile> resolveProfile(std::string_view renderer, std::string_view override) {
+    if (!override.empty()) return parseProfile(override, "BOUNCE_PROFILE");
+    return profileOfRenderer(renderer);
+}
+
+}  // namespace bounce
