@@ -27,7 +27,7 @@ from . import _bounce
 __all__ = [
     "Error", "scenes", "techniques", "technique", "renderer_settings", "reference_scope", "Scene", "Renderer",
     "CameraPath", "Reference", "PhotonMap", "reference", "photon_map", "compare", "METRICS", "sweep", "report",
-    "gl_info", "resources", "set_log_level", "read_image", "write_image", "flicker",
+    "gl_info", "select_gpu", "resources", "set_log_level", "read_image", "write_image", "flicker",
 ]
 
 #: Raised for bad input (unknown technique or setting, bad scene file, out-of-range values, ...) with
@@ -76,8 +76,11 @@ def techniques() -> list:
 
     Each entry: ``name``, ``summary``, ``paper``, ``scope`` (the reference it is measured against:
     ``bounces`` (int or ``"unbounded"``), ``indirect_only``, ``diffuse_only`` and the compared
-    ``component``) and ``settings``: a list of ``{"name", "type", "default", "range", "doc"}`` from the
-    one declaration that drives ``--set``, the run record and the viewer.
+    ``component``) and ``settings``: a list of ``{"name", "type", "default", "range", "doc",
+    "profile_defaults"}`` from the one declaration that drives ``--set``, the run record and the
+    viewer. ``default`` is the llvmpipe profile's; a setting whose default depends on the device
+    profile says so in ``profile_defaults`` (``"llvmpipe 32768, gpu 1024"``, else empty): a renderer
+    starts from the defaults of its context's profile (core/DeviceProfile.h, docs/gpu.md).
     """
     return _json.loads(_bounce.techniques())
 
@@ -453,7 +456,7 @@ def compare(test: ImageLike, reference: ImageLike, metrics: Optional[Iterable[st
     if variance is None and isinstance(reference, Reference):
         variance = reference.variance
     result_json, heat = _bounce.compare(_image_arg(test), _image_arg(reference),
-                                        None if variance is None else _np.asarray(variance), tonemap, float(exposure),
+                                        None if variance is None else _np.asarray(variance), tonemap, exposure,
                                         float(_bounce.flip_default_ppd if ppd is None else ppd), heatmap)
     raw = _json.loads(result_json)
     out: dict = dict(raw["metrics"])
@@ -502,12 +505,24 @@ def read_image(path: Union[str, "_os.PathLike[str]"]) -> _np.ndarray:
 
 def write_image(path: Union[str, "_os.PathLike[str]"], image: Any, exposure: float = 0.0, tonemap: str = "aces") -> None:
     """Writes linear radiance (H x W x 3): .exr as is, .png through ``exposure`` (stops) and ``tonemap`` (aces, reinhard, clamp); atomically."""
-    _bounce.write_image(_os.fspath(path), _np.asarray(image), float(exposure), tonemap)
+    _bounce.write_image(_os.fspath(path), _np.asarray(image), exposure, tonemap)
 
 
 def gl_info() -> dict:
-    """The module's GL context (made now if needed): vendor, renderer, version, platform."""
+    """The module's GL context (made now if needed): vendor, renderer, version, platform, device profile."""
     return _json.loads(_bounce.gl_info())
+
+
+def select_gpu(index: int) -> None:
+    """The EGL device of the module's GL context (``bounce --gpu N``; ``bounce info`` lists them).
+
+    Checked now against the EGL device enumeration (``bounce.Error`` naming the device count
+    otherwise); call it before the first renderer, study or :func:`gl_info`, which make the context.
+    Without it the environment's ``BOUNCE_EGL_DEVICE`` applies, else the automatic choice (the first
+    hardware device, then llvmpipe). Studies run by :func:`sweep` and processes started from Python
+    inherit the choice (docs/gpu.md "Device selection").
+    """
+    _bounce.select_gpu(int(index))
 
 
 def resources() -> dict:

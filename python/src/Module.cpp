@@ -166,7 +166,8 @@ struct PyRenderer {
         seenRevision = scene.objectRevision->load();
         session = onGlThread([&] {
             auto t = unwrap(createRenderTechnique(technique));
-            return unwrap(RenderSession::create(scene.scene, std::move(t), pixels, settings));
+            // Frames here always carry their timings (the run record): a measured context, as `render --stats`.
+            return unwrap(RenderSession::create(scene.scene, std::move(t), pixels, settings, 0, gl::measuredContextConfig()));
         });
         const std::lock_guard lock(g_renderersMutex);
         g_renderers.insert(this);
@@ -346,7 +347,8 @@ py::tuple compare(const py::object& test, const py::object& reference, const py:
 std::string describe(Configurable& target) {
     nlohmann::json out = nlohmann::json::array();
     for (const SettingDescription& d : describeSettings(target))
-        out.push_back({{"name", d.name}, {"type", d.type}, {"default", d.defaultValue}, {"range", d.range}, {"doc", d.doc}});
+        out.push_back({{"name", d.name}, {"type", d.type}, {"default", d.defaultValue}, {"range", d.range}, {"doc", d.doc},
+                        {"profile_defaults", d.profileDefaults}});
     return out.dump();
 }
 
@@ -451,8 +453,17 @@ PYBIND11_MODULE(_bounce, m) {
         return describe(r);
     });
     m.def("gl_info", [] {
-        return onGlThread([] { return gpuInfoJson(unwrap(processContext())->info()).dump(); });
+        return onGlThread([] { return gpuInfoJson(unwrap(processContext(gl::measuredContextConfig()))->info()).dump(); });
     });
+    m.def("select_gpu", [](int index) {
+        // `bounce --gpu N`: checked against the EGL devices now; only before the context exists.
+        onGlThread([&] {
+            if (processContextExists())
+                throw BounceError(fmt::format("select_gpu({}): the GL context exists already (call it before the first renderer, "
+                                              "study or gl_info(); or set BOUNCE_EGL_DEVICE before starting Python)", index));
+            unwrap(selectGpu(std::to_string(index), "select_gpu"));
+        });
+    }, py::arg("index"));
     m.def("resources", &resourcesJson);
 
     py::class_<PyScene>(m, "Scene")

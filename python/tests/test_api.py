@@ -26,7 +26,7 @@ def test_techniques_carry_settings_and_reference_scope(cli):
         assert set(t["scope"]) == {"bounces", "indirect_only", "diffuse_only", "component"}
         assert t["scope"]["component"] in ("full", "direct", "indirect")
         for s in t["settings"]:
-            assert set(s) == {"name", "type", "default", "range", "doc"} and s["name"] and s["type"] and s["doc"]
+            assert set(s) == {"name", "type", "default", "range", "doc", "profile_defaults"} and s["name"] and s["type"] and s["doc"]
     rsm = bounce.technique("rsm")
     grid = next(s for s in rsm["settings"] if s["name"] == "vplGrid")
     assert grid["type"] == "int" and grid["default"] and grid["range"]

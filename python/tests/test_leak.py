@@ -16,7 +16,7 @@ RSS_BOUND_BYTES = 8 * 1024 * 1024
 
 def churn(scene, count):
     for i in range(count):
-        r = bounce.Renderer(scene, "direct", SIZE, settings={"renderer.shadowMapSize": 16})
+        r = bounce.Renderer(scene, "direct", SIZE, settings={"renderer.shadowMapSize": 64})
         if i % 50 == 0:
             r.frame(0)  # now and then a frame: its per-frame objects must go too
         if i % 2:
