@@ -11,7 +11,10 @@
 #
 #     PYTHONPATH=build/python python3 examples/moving_light.py --out out/example
 #
-# Small on purpose (48 x 48 pixels, 8 frames, 64-spp references): it runs in seconds on llvmpipe.
+# Small on purpose (48 x 48 pixels, 8 frames, 256-spp references): it runs in about ten seconds on llvmpipe.
+# At 64 spp the references' own noise (relRMS floor 0.34) was as large as isr's error (0.38); at 256
+# the floor is 0.18 and isr 0.26: still within 2x of it (the plot's band), so the ranking of the two
+# techniques holds, isr's absolute error does not. --spp 1024 halves the floor again.
 
 # %%
 import argparse
@@ -29,7 +32,7 @@ parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("--out", default="out/example", help="folder of the plot (moving-light.png)")
 parser.add_argument("--size", type=int, default=48, help="image side in pixels")
 parser.add_argument("--frames", type=int, default=8)
-parser.add_argument("--spp", type=int, default=64, help="samples per pixel of each frame's reference")
+parser.add_argument("--spp", type=int, default=256, help="samples per pixel of each frame's reference")
 args = parser.parse_args()
 os.makedirs(args.out, exist_ok=True)
 
@@ -43,7 +46,7 @@ TECHNIQUES = ["isr", "iir"]
 scene = bounce.Scene.load("cornell-box-dynamic")
 light = scene.lights[0]
 start = np.array(light["position"], np.float32)
-radius = 0.2  # metres
+radius = 0.1  # metres: the circle stays under the ceiling, inside the 0.556 m box
 angles = np.linspace(0.0, 2.0 * np.pi, args.frames, endpoint=False)
 path = [start + radius * np.array([np.cos(a) - 1.0, 0.0, np.sin(a)], np.float32) for a in angles]
 
@@ -66,7 +69,9 @@ for i, position in enumerate(path):
     scene.set_light(light["name"], position=position)
     for t, renderer in renderers.items():
         image, record = renderer.frame(i, time=0.0)
-        ref = bounce.reference(scene, args.size, spp=args.spp, seed=i, **bounce.reference_scope(t))
+        # One seed for every frame: each pixel's paths use the same random numbers from frame to frame,
+        # so the references' noise changes little between frames and their flicker is the light's.
+        ref = bounce.reference(scene, args.size, spp=args.spp, seed=1, **bounce.reference_scope(t))
         result = bounce.compare(image, ref, metrics=["relRms"])
         images[t].append(image)
         references[t].append(ref.image)
@@ -92,7 +97,12 @@ fig, (ax_error, ax_flicker) = plt.subplots(1, 2, figsize=(10, 3.6))
 frames = np.arange(args.frames)
 for t, colour in zip(TECHNIQUES, ("tab:blue", "tab:orange")):
     ax_error.plot(frames, errors[t], marker="o", color=colour, label=f"{t} (median {np.median(frame_ms[t]):.1f} ms/frame)")
-    ax_error.plot(frames, floors[t], linestyle=":", color=colour, label=f"{t}'s reference-noise floor")
+    # The reference's noise floor as a band up to 2x it (docs/metrics.md): a point inside it (grey)
+    # is an error the reference cannot resolve.
+    floor = np.array(floors[t])
+    ax_error.fill_between(frames, floor, 2.0 * floor, color=colour, alpha=0.15, label=f"{t}: reference-noise floor to 2x")
+    inside = np.array(errors[t]) <= 2.0 * floor
+    ax_error.scatter(frames[inside], np.array(errors[t])[inside], color="grey", zorder=3, s=20)
     ax_flicker.plot(frames[1:], flickers[t], marker="o", color=colour, label=t)
     ax_flicker.plot(frames[1:], reference_flicker[t], linestyle="--", color=colour, alpha=0.6, label=f"{t}'s reference")
 ax_error.set(xlabel="frame", ylabel="relative RMS error vs reference", title="error per frame")
@@ -106,7 +116,8 @@ plot = os.path.join(args.out, "moving-light.png")
 fig.savefig(plot, dpi=100, bbox_inches="tight")
 print(f"wrote {plot}")
 for t in TECHNIQUES:
-    print(f"{t}: relRMS mean {np.mean(errors[t]):.3f} (floor {np.mean(floors[t]):.3f}), "
+    print(f"{t}: relRMS mean {np.mean(errors[t]):.3f} (floor {np.mean(floors[t]):.3f}, "
+          f"{sum(e <= 2 * f for e, f in zip(errors[t], floors[t]))} of {args.frames} frames within 2x), "
           f"flicker mean {np.mean(flickers[t]):.3f} (reference {np.mean(reference_flicker[t]):.3f})")
 
 # %% [markdown]
