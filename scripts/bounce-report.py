@@ -231,8 +231,11 @@ def scatter_plot(scene, rows):
     for ax, metric, label in ((axes[0], "relMse", "relMSE (linear)"), (axes[1], "flipLdr", "LDR-FLIP (displayed)")):
         # The reference-noise floor of each reference scope as a band up to 2x the floor: a point
         # inside it cannot be told from the reference's noise, so it is drawn hollow and grey.
+        # Only positive floors: a 1-spp reference has no variance estimate (floor 0), nothing to draw,
+        # and a zero on the log axis would stretch the figure past matplotlib's size limit.
         floors = sorted({(r.get("reference_scope") or "", r[f"{metric}_floor"]) for r in rows
-                         if r.get(f"{metric}_floor") is not None})
+                         if isinstance(r.get(f"{metric}_floor"), (int, float)) and math.isfinite(r[f"{metric}_floor"])
+                         and r[f"{metric}_floor"] > 0})
         values = [r[metric] for r in rows if r.get(metric) is not None] + [f for _, f in floors]
         bottom = min(values) / 3 if metric == "relMse" and values and min(values) > 0 else 0.0
         # Floors within 20% of each other share one label (scopes of about the same noise).
