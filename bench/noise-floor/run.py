@@ -36,7 +36,7 @@ def sweep(bounce, study, out, jobs):
 
 def summarize(out):
     references = [json.load(open(f)) for f in glob.glob(os.path.join(out, "reference/*/*/*/record.json"))]
-    per_scene, inside = {}, []
+    per_scene, inside, closest = {}, [], {}
     for f in sorted(glob.glob(os.path.join(out, "compare/*/*/*/record.json"))):
         c = json.load(open(f))
         if c.get("status") != "ok":
@@ -44,6 +44,13 @@ def summarize(out):
         s = per_scene.setdefault(c["scene"], {"compares": 0, "inside": 0, **{m: 0 for m in SHOWN}})
         s["compares"] += 1
         flags = {m: bool(c["insideFloor"].get(m)) for m in SHOWN}
+        # The margin: each metric's smallest error / floor over the scene's comparisons (2 = the flag's edge).
+        for m in SHOWN:
+            value, floor = c["metrics"].get(m), c["floor"].get(m)
+            if value is not None and floor:
+                best = closest.setdefault(c["scene"], {}).get(m)
+                if best is None or value / floor < best["ratio"]:
+                    closest[c["scene"]][m] = {"ratio": round(value / floor, 3), "job": c["job"], "value": value, "floor": floor}
         for m in SHOWN:
             s[m] += flags[m]
         if any(flags.values()):
@@ -60,6 +67,7 @@ def summarize(out):
         "insideTotal": sum(s["inside"] for s in per_scene.values()),
         "compares": sum(s["compares"] for s in per_scene.values()),
         "inside": inside,
+        "closest": closest,
     }
 
 
