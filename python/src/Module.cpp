@@ -465,6 +465,7 @@ PYBIND11_MODULE(_bounce, m) {
         });
     }, py::arg("index"));
     m.def("resources", &resourcesJson);
+    m.def("context_exists", [] { return onGlThread([] { return processContextExists(); }); });
 
     py::class_<PyScene>(m, "Scene")
         .def_static("load", &loadPyScene, py::arg("name_or_path"), py::arg("params"))

@@ -56,3 +56,19 @@ def test_profile_defaults_under_the_settings_as_the_cli(gl, tmp_path, profile):
     assert batch == record["settings"]["vplBatch"] and given == 3
     grid = next(s for s in bounce.technique("rsm")["settings"] if s["name"] == "vplBatch")
     assert f"{got_profile} {batch}" in grid["profile_defaults"], grid
+
+
+def test_one_lazy_context():
+    """No context until something renders: listing, loading, tracing and comparing make none; the
+    first renderer makes it, and later renderers and gl_info() reuse it."""
+    code = ("import bounce\n"
+            "from bounce import _bounce\n"
+            "s = bounce.Scene.load('cornell-box'); bounce.techniques()\n"
+            "ref = bounce.reference(s, 8, spp=2); bounce.compare(ref.image, ref)\n"
+            "before = _bounce.context_exists()\n"
+            "a = bounce.Renderer(s, 'direct', 8); info = bounce.gl_info()\n"
+            "b = bounce.Renderer(s, 'ambient', 8)\n"
+            "print(before, _bounce.context_exists(), info == bounce.gl_info())")
+    done = python(code)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["False", "True", "True"], done.stdout

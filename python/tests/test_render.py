@@ -1,4 +1,7 @@
 """Renderers: arrays, run records, the CLI's pixels bit for bit, and the viewer's scene edits."""
+import threading
+import time
+
 import numpy as np
 import pytest
 
@@ -77,3 +80,23 @@ def test_renderers_share_one_context_and_release_their_objects(gl):
     assert bounce.resources()["gl_objects"] == before
     info = bounce.gl_info()
     assert info["version"] and info["platform"].startswith("egl")
+
+
+def test_the_gil_is_released_while_rendering(gl):
+    """Frames rendered on another thread leave this one running Python meanwhile."""
+    result = {}
+    with bounce.Renderer("cornell-box", "rsm", 64) as r:
+        r.frame(0)  # programs linked before the measurement
+        worker = threading.Thread(target=lambda: result.setdefault("images", r.frames(8)[0]))
+        turns = 0
+        start = time.perf_counter()
+        worker.start()
+        while worker.is_alive():
+            turns += 1
+            time.sleep(0.001)
+        elapsed = time.perf_counter() - start
+    assert result["images"].shape == (8, 64, 64, 3)
+    if elapsed < 0.05:  # a hardware GPU may render them faster than this thread can look (llvmpipe: ~0.3 s)
+        pytest.skip(f"8 frames took {elapsed * 1000:.1f} ms: too fast to see the GIL released")
+    # Holding the GIL while rendering would allow no turn until the frames were done (one at most).
+    assert turns > 10, f"{turns} turns in {elapsed:.2f} s"
