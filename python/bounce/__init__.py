@@ -326,6 +326,7 @@ class Renderer:
 
     @property
     def closed(self) -> bool:
+        """True after ``close()``."""
         return self._core.closed
 
     def __enter__(self) -> "Renderer":
@@ -354,10 +355,12 @@ class Reference:
 
     @property
     def noise(self) -> dict:
+        """The record's noise figures: ``meanPixelRelativeStdError`` and ``floor`` (each metric's floor)."""
         return self.record["noise"]
 
     @property
     def samples_per_pixel(self) -> int:
+        """Samples traced per pixel (fewer than asked when ``time_limit`` stopped the passes)."""
         return self.record["result"]["samplesPerPixel"]
 
     def __array__(self, dtype: Any = None) -> _np.ndarray:
