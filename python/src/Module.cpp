@@ -304,13 +304,7 @@ bool isPath(const py::handle& o) {
 py::tuple compare(const py::object& test, const py::object& reference, const py::object& variance, const std::string& toneCurve,
                   float exposureEv, double pixelsPerDegree, const std::string& heatmap) {
     // The command's option checks, in its order and words.
-    ToneMap radianceToneMap{exposureEv, ToneCurve::Aces};
-    auto curve = parseToneCurve(toneCurve);
-    if (!curve) throw BounceError("--tonemap: " + curve.error().message);
-    radianceToneMap.curve = *curve;
-    if (!std::isfinite(exposureEv)) throw BounceError(fmt::format("--exposure: {} is not a finite number", exposureEv));
-    if (!(pixelsPerDegree > 0.0) || !std::isfinite(pixelsPerDegree))
-        throw BounceError(fmt::format("--ppd: {} is not a positive number", pixelsPerDegree));
+    const ToneMap radianceToneMap = unwrap(compareDisplayOptions(toneCurve, exposureEv, pixelsPerDegree));
     CompareRequest request;
     request.pixelsPerDegree = pixelsPerDegree;
     if (!heatmap.empty()) request.heatmap = unwrap(parseHeatmapMetric(heatmap));

@@ -66,15 +66,9 @@ int runCompare(const CompareArgs& args) {
     auto fail = [](const std::string& message) { return failCommand(kCommand, message); };
 
     // Options first, so a typo costs nothing.
-    ToneMap radianceToneMap{args.exposureEv, ToneCurve::Aces};
-    if (!args.toneCurve.empty()) {
-        auto curve = parseToneCurve(args.toneCurve);
-        if (!curve) return fail("--tonemap: " + curve.error().message);
-        radianceToneMap.curve = *curve;
-    }
-    if (!std::isfinite(args.exposureEv)) return fail(fmt::format("--exposure: {} is not a finite number", args.exposureEv));
-    if (!(args.pixelsPerDegree > 0.0) || !std::isfinite(args.pixelsPerDegree))
-        return fail(fmt::format("--ppd: {} is not a positive number", args.pixelsPerDegree));
+    auto display = compareDisplayOptions(args.toneCurve, args.exposureEv, args.pixelsPerDegree);
+    if (!display) return fail(display.error().message);
+    const ToneMap radianceToneMap = *display;
     auto heatmapMetric = parseHeatmapMetric(args.heatmapMetric);
     if (!heatmapMetric) return fail(heatmapMetric.error().message);
     CompareRequest request;

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace bounce {
 namespace {
 
@@ -75,6 +77,19 @@ Expected<CompareInput> memoryCompareInput(const std::string& label, Image image,
     in.radiance = true;
     in.toneMap = radianceToneMap;
     return in;
+}
+
+Expected<ToneMap> compareDisplayOptions(const std::string& toneCurve, float exposureEv, double pixelsPerDegree) {
+    ToneMap radianceToneMap{exposureEv, ToneCurve::Aces};
+    if (!toneCurve.empty()) {
+        auto curve = parseToneCurve(toneCurve);
+        if (!curve) return makeError("--tonemap: {}", curve.error().message);
+        radianceToneMap.curve = *curve;
+    }
+    if (!std::isfinite(exposureEv)) return makeError("--exposure: {} is not a finite number", exposureEv);
+    if (!(pixelsPerDegree > 0.0) || !std::isfinite(pixelsPerDegree))
+        return makeError("--ppd: {} is not a positive number", pixelsPerDegree);
+    return radianceToneMap;
 }
 
 Expected<HeatmapMetric> parseHeatmapMetric(const std::string& name) {

@@ -29,6 +29,11 @@ Expected<CompareInput> loadCompareInput(const std::string& path, const ToneMap& 
 // An image in memory as radiance (checked non-empty and finite).
 Expected<CompareInput> memoryCompareInput(const std::string& label, Image image, const ToneMap& radianceToneMap);
 
+// compare's display options, checked in the command's order and words: the tone curve ("" = aces),
+// a finite exposure (stops) and a positive FLIP observer (pixels per degree); the EXR inputs' display
+// transform.
+Expected<ToneMap> compareDisplayOptions(const std::string& toneCurve, float exposureEv, double pixelsPerDegree);
+
 enum class HeatmapMetric { Flip, FlipLdr, FlipHdr, RelMse, Abs };
 // "flip", "flip-ldr", "flip-hdr", "relmse", "abs" ("--heatmap-metric: unknown metric ..." otherwise).
 Expected<HeatmapMetric> parseHeatmapMetric(const std::string& name);
