@@ -576,9 +576,9 @@ def fidelity_table(rec, path):
              f"each technique at its defaults, {rec['size']}², against `bounce reference` at {rec['spp']} spp in the scope `bounce list` "
              "declares for it. Cells: energy (image mean / reference mean) and relMSE; **bold** where the energy leaves "
              f"±{tol * 100:.0f} % or the relMSE is not below the no-GI image's (the shared direct pass's image of the same component); "
-             "— where the technique refuses the scene (one-line error). The no-GI relMSE is the last row.", "",
+             "— where the technique refuses the scene (one-line error). The last rows are the no-GI relMSE of each reference scope.", "",
              "| technique | " + " | ".join(f"`{s}`" for s in scenes) + " |", "|---|" + "---|" * len(scenes)]
-    nogi = {}
+    nogi = {}  # (scope, component) -> scene -> the no-GI image's relMSE in that scope
     for t in techniques:
         cells = []
         for sc in scenes:
@@ -587,12 +587,15 @@ def fidelity_table(rec, path):
                 cells.append("—")
                 continue
             m = e["metrics"]
-            nogi.setdefault(sc, e["noGi"]["relMse"])
+            nogi.setdefault((e["scope"], e["component"]), {}).setdefault(sc, e["noGi"]["relMse"])
             cell = f"{m['energy']:.2f} / {m['relMse']:.3f}"
             out = not e.get("baseline") and not e["withinBounds"]
             cells.append(f"**{cell}**" if out else cell)
         lines.append(f"| `{t}` | " + " | ".join(cells) + " |")
-    lines.append("| no-GI relMSE | " + " | ".join(f"{nogi[sc]:.3f}" if sc in nogi else "—" for sc in scenes) + " |")
+    # One no-GI row per reference scope: a technique is held to the row of the scope it declares.
+    for (scope, component), row in sorted(nogi.items()):
+        lines.append(f"| no-GI relMSE, `{scope or 'full image'}` ({component}) | "
+                     + " | ".join(f"{row[sc]:.3f}" if sc in row else "—" for sc in scenes) + " |")
     return "\n".join(lines)
 
 
