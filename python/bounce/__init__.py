@@ -475,6 +475,10 @@ def compare(test: ImageLike, reference: ImageLike, metrics: Optional[Iterable[st
         out["relMseCorrected"] = noise["relMseCorrected"]
         out["noise"] = {k: noise[k] for k in ("record", "variance", "samplesPerPixel", "meanPixelRelativeStdError",
                                                "fromRecord", "factor")}
+        if isinstance(reference, Reference) and not noise.get("samplesPerPixel"):
+            # A Reference in memory: its own record has what a file's record beside it would.
+            out["noise"]["samplesPerPixel"] = reference.samples_per_pixel
+            out["noise"]["meanPixelRelativeStdError"] = reference.noise["meanPixelRelativeStdError"]
     return out
 
 

@@ -41,6 +41,8 @@ def test_noise_floor_from_a_reference_and_from_its_record(cli, tmp_path):
     assert good["floor"]["relMse"] == pytest.approx(ref.noise["floor"]["relMse"])
     assert good["insideFloor"]["relMse"] and good["insideFloor"]["flipLdr"], "a near-exact image is inside the floor"
     assert good["relMseCorrected"] == pytest.approx(good["relMse"] - good["floor"]["relMse"])
+    assert good["noise"]["samplesPerPixel"] == 64
+    assert good["noise"]["meanPixelRelativeStdError"] == ref.noise["meanPixelRelativeStdError"] > 0
     bad = bounce.compare(exact_like.image * 0.5, ref)
     assert not bad["insideFloor"]["relMse"] and not bad["insideFloor"]["energy"]
     # The CLI's reference with its record and variance beside it: compare finds them.
