@@ -30,7 +30,8 @@ echo "demo: images are in $(cd "$out" && pwd)/ ($(ls "$out"/*.png | wc -l) PNG f
 
 # A small built-in study (scripts/demo-study.json, docs/studies.md): every technique with two settings
 # on three scenes at 64x64, compared with shared references, temporal metrics, then the report page.
-# About a minute on two cores; a rerun reuses the finished jobs.
+# About three minutes on two cores (its references at 1024 spp, docs/studies.md "Reference noise in
+# the demo study"); a rerun reuses the finished jobs.
 study_out="$out/study"
 "$bounce" sweep "$(dirname "$0")/demo-study.json" --out "$study_out" --jobs 2
 report=$("$bounce" report "$study_out")

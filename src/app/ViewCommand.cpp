@@ -32,6 +32,7 @@
 #include "metrics/ErrorMetrics.h"
 #include "metrics/Heatmap.h"
 #include "scene/CameraPath.h"
+#include "scene/SceneEdits.h"
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
 
@@ -394,8 +395,7 @@ int runView(const ViewOptions& o) {
     bool selectObject = false;
     int selectedLight = 0, selectedObject = -1;
     std::vector<int> movableObjects;
-    for (size_t i = 0; i < scene->objects.size(); ++i)
-        if (scene->objects[i].isDynamic()) movableObjects.push_back(static_cast<int>(i));
+    for (size_t i : bounce::movableObjects(*scene)) movableObjects.push_back(static_cast<int>(i));
     if (!movableObjects.empty()) selectedObject = movableObjects.front();
     float scale = 1.0f;
     int cooldown = 0;
@@ -420,17 +420,16 @@ int runView(const ViewOptions& o) {
 
     // This frame's presses of `key` (from the key callback above).
     auto pressCount = [&](int key) { return static_cast<int>(std::count(keyPresses.begin(), keyPresses.end(), key)); };
+    // The scene edits of scene/SceneEdits.h (shared with `import bounce`); the indices are valid by construction.
     auto moveSelected = [&](glm::vec3 delta) {
         if (selectObject) {
-            if (selectedObject >= 0) {
-                Object& obj = scene->objects[static_cast<size_t>(selectedObject)];
-                obj.transform = glm::translate(glm::mat4(1.0f), delta) * obj.transform;
+            if (selectedObject >= 0 && moveObject(*scene, static_cast<size_t>(selectedObject), delta).ok()) {
                 // SceneGpu skips the upload when the time has not changed (a paused animation).
                 for (Side* side : {&a, &b})
                     if (side->pipeline) side->pipeline->sceneGpu().invalidateObjects();
             }
         } else if (!scene->lights.empty()) {
-            scene->lights[static_cast<size_t>(selectedLight)].position += delta;
+            (void)moveLight(*scene, static_cast<size_t>(selectedLight), delta);
         }
     };
     auto currentFrame = [&] { return static_cast<uint32_t>(std::max(0.0, std::floor(frameF))); };
