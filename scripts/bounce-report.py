@@ -34,8 +34,12 @@ except ImportError:
 
 # Display order of the image grid.
 COMPONENTS = ["full", "direct", "indirect"]
-# Metrics copied into results.json from a compare record, in column order.
-METRICS = ["relMse", "relRms", "mse", "rmse", "mae", "nrmse", "psnr", "ssim", "flipLdr", "flipHdr", "rmsSum8"]
+# Metrics copied into results.json from a compare record, in column order; each with its
+# reference-noise floor (METRIC_floor) and whether the measured error is within 2x of it
+# (METRIC_insideFloor), docs/metrics.md "Reference noise floor".
+METRICS = ["relMse", "relRms", "mse", "rmse", "mae", "nrmse", "psnr", "ssim", "flipLdr", "flipHdr", "rmsSum8", "energy"]
+# The metrics whose floors the page shows (the plots' two and the table's).
+FLOOR_SHOWN = ["relMse", "relRms", "flipLdr"]
 # Matplotlib figure size (inches at 100 dpi): plots stay legible at the page's 900 px column.
 PLOT_SIZE = (9.0, 3.6)
 PLOT_DPI = 100
@@ -192,6 +196,11 @@ def build_rows(renders, compares, temporals, references):
                 row["reference_spp"] = (ref.get("result") or {}).get("samplesPerPixel")
             for m in METRICS:
                 row[m] = (c.get("metrics") or {}).get(m)
+                row[f"{m}_floor"] = (c.get("floor") or {}).get(m)
+                row[f"{m}_insideFloor"] = (c.get("insideFloor") or {}).get(m)
+            row["relMseCorrected"] = (c.get("metrics") or {}).get("relMseCorrected")
+            row["reference_noise"] = (c.get("referenceNoise") or {}).get("meanPixelRelativeStdError")
+            row["reference_scope"] = split_id(c.get("reference", ""))[2] if c.get("reference") else None
             cl = c.get("leak") or {}
             if cl:
                 row["leak_test"] = cl.get("test") if not isinstance(cl.get("test"), dict) else None
@@ -210,19 +219,53 @@ def build_rows(renders, compares, temporals, references):
     return rows
 
 
+def inside_any(row):
+    """True when the row's error is within 2x the reference-noise floor on a metric the page shows."""
+    return any(row.get(f"{m}_insideFloor") for m in FLOOR_SHOWN)
+
+
 def scatter_plot(scene, rows):
     fig, axes = plt.subplots(1, 2, figsize=PLOT_SIZE)
     techniques = sorted({r["technique"] for r in rows})
     cmap = plt.get_cmap("tab20")
     for ax, metric, label in ((axes[0], "relMse", "relMSE (linear)"), (axes[1], "flipLdr", "LDR-FLIP (displayed)")):
+        # The reference-noise floor of each reference scope as a band up to 2x the floor: a point
+        # inside it cannot be told from the reference's noise, so it is drawn hollow and grey.
+        # Only positive floors: a 1-spp reference has no variance estimate (floor 0), nothing to draw,
+        # and a zero on the log axis would stretch the figure past matplotlib's size limit.
+        floors = sorted({(r.get("reference_scope") or "", r[f"{metric}_floor"]) for r in rows
+                         if isinstance(r.get(f"{metric}_floor"), (int, float)) and math.isfinite(r[f"{metric}_floor"])
+                         and r[f"{metric}_floor"] > 0})
+        values = [r[metric] for r in rows if r.get(metric) is not None] + [f for _, f in floors]
+        bottom = min(values) / 3 if metric == "relMse" and values and min(values) > 0 else 0.0
+        # Floors within 20% of each other share one label (scopes of about the same noise).
+        labels = []
+        for scope, floor in floors:
+            if labels and floor <= labels[-1][1] * 1.2:
+                labels[-1] = (labels[-1][0] + ", " + scope, labels[-1][1])
+            else:
+                labels.append((scope, floor))
+        for i, (scope, floor) in enumerate(floors):
+            ax.axhspan(bottom, 2 * floor, color="0.5", alpha=0.12, zorder=1, linewidth=0,
+                       label="noise floor x2" if i == 0 else None)
+            ax.axhline(floor, color="0.45", linewidth=0.8, linestyle=":", zorder=1)
+        for scope, floor in labels:
+            ax.annotate(scope, xy=(1.0, floor), xycoords=("axes fraction", "data"), fontsize=6, color="0.35",
+                        ha="right", va="bottom")
         for i, technique in enumerate(techniques):
-            points = [(r["frame_ms"], r[metric]) for r in rows
+            points = [(r["frame_ms"], r[metric], bool(r.get(f"{metric}_insideFloor"))) for r in rows
                       if r["technique"] == technique and r.get("frame_ms") is not None and r.get(metric) is not None]
             if not points:
                 continue
             colour = cmap(i % 20)
-            ax.scatter([p[0] for p in points], [p[1] for p in points], color=colour, label=technique, s=22, zorder=3)
-            front = pareto_front(points)
+            outside = [p for p in points if not p[2]]
+            inside = [p for p in points if p[2]]
+            if outside:
+                ax.scatter([p[0] for p in outside], [p[1] for p in outside], color=colour, label=technique, s=22, zorder=3)
+            if inside:
+                ax.scatter([p[0] for p in inside], [p[1] for p in inside], facecolors="0.85", edgecolors=colour, s=22,
+                           zorder=3, label=None if outside else technique)
+            front = pareto_front([(p[0], p[1]) for p in points])
             if len(front) > 1:
                 ax.step([p[0] for p in front], [p[1] for p in front], where="post", color=colour, linewidth=1.2, zorder=2)
         ax.set_xlabel("median GPU frame time (ms)")
@@ -234,7 +277,8 @@ def scatter_plot(scene, rows):
     handles, labels = axes[0].get_legend_handles_labels()
     if handles:
         fig.legend(handles, labels, loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=8)
-    fig.suptitle(f"{scene}: error vs time, Pareto front per technique (steps)")
+    fig.suptitle(f"{scene}: error vs time, Pareto front per technique (steps); grey band: 2x the reference-noise floor, "
+                 "hollow grey points inside it", fontsize=9)
     return figure_uri(fig)
 
 
@@ -253,6 +297,16 @@ def temporal_plot(scene, records):
         ref = [f.get("referenceFlicker") if f.get("referenceFlicker") is not None else float("nan")
                for f in first.get("frames") or []]
         axes[1].plot([f["frame"] for f in first.get("frames") or []], ref, "k--", label="reference")
+        # Each scope's per-frame relative RMS floor: the error an exact image would show (docs/metrics.md).
+        scopes = {}
+        for t in records.values():
+            key = json.dumps(t.get("scope"), sort_keys=True)
+            scopes.setdefault(key, t)
+        for i, t in enumerate(scopes.values()):
+            frames = t.get("frames") or []
+            if frames and frames[0].get("relRmsFloor") is not None:
+                axes[0].plot([f["frame"] for f in frames], [f.get("relRmsFloor") for f in frames], color="0.4",
+                             linestyle=":", label="reference-noise floor" if i == 0 else None)
     axes[0].set_ylabel("relative RMS error vs reference")
     axes[1].set_ylabel("flicker (mean |ΔY| / mean Y)")
     for ax in axes:
@@ -279,6 +333,8 @@ img.plot { max-width: 100%; height: auto; display: block; }
         justify-content: center; cursor: zoom-out; }
 #zoom img { max-width: 95vw; max-height: 95vh; width: 90vmin; image-rendering: pixelated; }
 button { margin: 0.3em 0; }
+.inside { color: #999; font-style: italic; }
+p.floor { color: #555; font-size: 0.9em; }
 """
 
 # The page's own checks (tests/study/report_chromium.py reads data-selftest): every image decoded
@@ -336,6 +392,13 @@ window.addEventListener('load', function () {
     bad: bad, errors: window.bounceErrors }));
 });
 """
+
+
+def floor_cell(row, metric):
+    """The measured value with its floor beside it; a <span class="inside"> when within 2x of the floor."""
+    value, floor = row.get(metric), row.get(f"{metric}_floor")
+    text = fmt(value) + (f' <small>({fmt(floor, 2)})</small>' if floor is not None else "")
+    return f'<span class="inside" title="within 2x the reference-noise floor">{text}</span>' if row.get(f"{metric}_insideFloor") else text
 
 
 def img_tag(uri, alt, css_class, heat=None):
@@ -410,6 +473,14 @@ def main():
     page.append(" Results as <a href=\"results.json\">results.json</a> and <a href=\"results.csv\">results.csv</a>.</p>")
     if problems:
         page.append("<p>Unreadable records: " + esc("; ".join(problems)) + "</p>")
+    compared = [r for r in rows if r.get("relMse") is not None]
+    if compared:
+        inside = [r for r in compared if inside_any(r)]
+        spp = sorted({r.get("reference_spp") for r in compared if r.get("reference_spp") is not None})
+        page.append(f'<p class="floor">Reference noise: {len(inside)} of {len(compared)} comparisons are within 2x the '
+                    f"reference-noise floor on relMSE, relRMS or LDR-FLIP (references at {', '.join(map(str, spp))} spp); "
+                    "those are drawn hollow and grey in the plots and their table cells grey. docs/metrics.md "
+                    '"Reference noise floor" defines the floors.</p>')
     page.append('<button type="button" aria-pressed="false" onclick="bounceToggleHeat(this)">show FLIP heat maps</button>'
                 " Click an image to zoom; the heat map replaces each technique's compared component.")
 
@@ -455,10 +526,17 @@ def main():
 
         measured = [r for r in scene_rows if r.get("relMse") is not None]
         if measured:
-            page.append(table(["technique", "variant", "frame ms", "relMSE", "relRMS", "SSIM", "FLIP LDR", "FLIP HDR", "PSNR"],
-                              [[esc(r["technique"]), esc(r["variant"]), fmt(r.get("frame_ms")), fmt(r.get("relMse")),
-                                fmt(r.get("relRms")), fmt(r.get("ssim")), fmt(r.get("flipLdr")), fmt(r.get("flipHdr")),
-                                fmt(r.get("psnr"))] for r in measured], 2))
+            inside = [r for r in measured if inside_any(r)]
+            page.append(f'<p class="floor">{len(inside)} of {len(measured)} comparisons have an error within 2x the '
+                        "reference-noise floor on relMSE, relRMS or LDR-FLIP (grey cells, what an exact image would "
+                        "score against the same reference beside each value): their ranking there is the reference's "
+                        "noise.</p>")
+            page.append(table(["technique", "variant", "frame ms", "relMSE (floor)", "relMSE bias-corrected", "relRMS (floor)",
+                               "SSIM", "FLIP LDR (floor)", "FLIP HDR", "PSNR", "reference noise / pixel"],
+                              [[esc(r["technique"]), esc(r["variant"]), fmt(r.get("frame_ms")), floor_cell(r, "relMse"),
+                                fmt(r.get("relMseCorrected")), floor_cell(r, "relRms"), fmt(r.get("ssim")),
+                                floor_cell(r, "flipLdr"), fmt(r.get("flipHdr")), fmt(r.get("psnr")),
+                                fmt(r.get("reference_noise"))] for r in measured], 2))
 
         leaks = [r for r in scene_rows if r.get("leak_test") is not None or r.get("leak_full") is not None]
         if leaks:

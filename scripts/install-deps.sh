@@ -18,6 +18,8 @@ packages=(
   # `bounce report` (matplotlib plots) and its test in headless Chromium
   parallel munge slurmctld slurmd slurm-client
   python3 python3-matplotlib chromium
+  # `import bounce` (python/, docs/python.md): the pybind11 module, numpy arrays, its pytest tests
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # issue 29: every shader variant through Khronos' reference compiler (tests/portable/glslang_test.py)
   glslang-tools
   # the sanitizer and fuzz build (CMakePresets.json `sanitize`): clang with ASan, UBSan and libFuzzer

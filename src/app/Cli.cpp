@@ -1,18 +1,16 @@
 #include "app/Cli.h"
 
 #include "app/Options.h"
+#include "app/ProcessContext.h"
 #include "core/Log.h"
-#include "gpu/DeviceSelection.h"
 #include "scene/SceneLoader.h"
 
-#include <cstdlib>
 #include <iostream>
 #include <new>
 
 namespace bounce {
 
-int failCommand(const std::string& command, const std::string& message) {
-    // One line: the line breaks of multi-line messages (shader logs, library exceptions) become " | ".
+std::string oneLine(const std::string& message) {
     std::string line;
     for (char c : message) {
         if (c == '\r') continue;
@@ -20,7 +18,11 @@ int failCommand(const std::string& command, const std::string& message) {
         else line += c;
     }
     while (line.size() >= 3 && line.compare(line.size() - 3, 3, " | ") == 0) line.resize(line.size() - 3);
-    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << line << "\n";
+    return line;
+}
+
+int failCommand(const std::string& command, const std::string& message) {
+    std::cerr << "bounce" << (command.empty() ? "" : " " + command) << ": " << oneLine(message) << "\n";
     return 1;
 }
 
@@ -78,18 +80,7 @@ int runCli(int argc, char** argv) {
     const std::string command0 = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
     if (!gpu.empty()) {
         // Checked before any work: an index past the enumeration fails here, naming the device count.
-        auto index = gl::parseDeviceIndex(gpu, "--gpu");
-        if (!index.ok()) return failCommand(command0, index.error().message);
-        auto devices = gl::enumerateEglDevices();
-        if (!devices.ok()) return failCommand(command0, "--gpu: " + devices.error().message);
-        gl::DeviceRequest request;
-        request.index = *index;
-        request.source = "--gpu";
-        if (const char* p = std::getenv("BOUNCE_EGL_PLATFORM")) request.platform = p;
-        if (auto chosen = gl::chooseDevices(*devices, request); !chosen.ok()) return failCommand(command0, chosen.error().message);
-        gl::setDeviceOverride(*index);
-        // Processes this one starts (sweep workers, `bounce report`) use the same device.
-        ::setenv("BOUNCE_EGL_DEVICE", gpu.c_str(), 1);
+        if (auto r = selectGpu(gpu, "--gpu"); !r.ok()) return failCommand(command0, r.error().message);
     }
     // Scene files' `settings` are checked against every technique's declared settings, whatever runs.
     setSceneSettingCheck(checkSceneSetting);

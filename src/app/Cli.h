@@ -25,5 +25,8 @@ int runCli(int argc, char** argv);
 
 // Prints "bounce <command>: <message>" to stderr and returns exit code 1.
 int failCommand(const std::string& command, const std::string& message);
+// The message as one line: line breaks of multi-line messages (shader logs, library exceptions)
+// become " | " (what failCommand prints and `import bounce`'s exceptions carry).
+std::string oneLine(const std::string& message);
 
 }  // namespace bounce

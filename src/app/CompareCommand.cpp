@@ -1,14 +1,14 @@
 // `bounce compare TEST REF`: every metric of metrics/ErrorMetrics.h for two images of the same size,
 // optionally as JSON and with an error heat map. docs/metrics.md documents the output.
 #include "app/Cli.h"
+#include "app/Comparison.h"
 #include "app/Options.h"
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "metrics/ErrorMetrics.h"
 #include "metrics/Heatmap.h"
-#include "metrics/LightLeak.h"
-#include "reference/PrimaryHits.h"
+#include "metrics/NoiseFloor.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -22,9 +22,6 @@ namespace bounce {
 namespace {
 
 constexpr const char* kCommand = "compare";
-// Heat maps of unbounded per-pixel errors end their colour bar at this percentile, so a few
-// fireflies do not push everything else to the bottom colour.
-constexpr double kHeatmapTopPercentile = 0.99;
 
 struct CompareArgs {
     std::string testPath, referencePath;
@@ -42,45 +39,9 @@ struct CompareArgs {
     bool sceneParamsGiven = false, frameGiven = false;
 };
 
-struct LeakResult {
-    double test = 0.0, reference = 0.0;
-    size_t darkPixels = 0, litPixels = 0;
-};
+const char* kindName(const CompareInput& in) { return in.radiance ? "radiance, EXR" : "display, PNG"; }
 
-struct Input {
-    std::string path;
-    Image image;
-    bool radiance = false;  // EXR (linear radiance) rather than PNG (display image)
-    ToneMap toneMap;
-};
-
-enum class HeatmapMetric { Flip, FlipLdr, FlipHdr, RelMse, Abs };
-
-std::optional<HeatmapMetric> parseHeatmapMetric(const std::string& name) {
-    if (name == "flip") return HeatmapMetric::Flip;
-    if (name == "flip-ldr") return HeatmapMetric::FlipLdr;
-    if (name == "flip-hdr") return HeatmapMetric::FlipHdr;
-    if (name == "relmse") return HeatmapMetric::RelMse;
-    if (name == "abs") return HeatmapMetric::Abs;
-    return std::nullopt;
-}
-
-Expected<Input> loadInput(const std::string& path, const ToneMap& radianceToneMap) {
-    BOUNCE_TRY(const ImageFormat format, imageFormatFor(path));
-    BOUNCE_TRY(Image image, readImage(path));
-    if (image.empty()) return makeError("{}: image is empty", path);
-    BOUNCE_TRY_VOID(checkFinite(image, path));
-    Input in;
-    in.path = path;
-    in.image = std::move(image);
-    in.radiance = format == ImageFormat::Exr;
-    in.toneMap = in.radiance ? radianceToneMap : kDisplayImageToneMap;
-    return in;
-}
-
-const char* kindName(const Input& in) { return in.radiance ? "radiance, EXR" : "display, PNG"; }
-
-nlohmann::json inputJson(const Input& in) {
+nlohmann::json inputJson(const CompareInput& in) {
     return {{"path", in.path},
             {"kind", in.radiance ? "radiance" : "display"},
             {"width", in.image.width()},
@@ -92,34 +53,14 @@ std::string toneMapText(const ToneMap& t) {
     return fmt::format("{} at {:+g} EV", toneCurveName(t.curve), t.exposureEv);
 }
 
-// The leak scene's masks at the images' size: each pixel's first surface through the scene's camera
-// at the frame (ray cast, as the rasteriser samples pixel centres), inside the dark or the lit box.
-Expected<LeakResult> leakScores(const Scene& scene, uint32_t frame, const Input& test, const Input& reference) {
-    const LeakRegions& r = *scene.leakRegions;
-    const int w = test.image.width(), h = test.image.height();
-    BOUNCE_TRY(const PrimaryHits hits, primaryHits(scene, scene.timeOfFrame(frame), w, h));
-    PixelMask covered(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) covered.set(x, y, hits.covered[static_cast<size_t>(y) * w + x] != 0);
-    const PixelMask dark = boxMask(hits.positions, r.darkMin, r.darkMax, &covered);
-    const PixelMask lit = boxMask(hits.positions, r.litMin, r.litMax, &covered);
-    LeakResult out{0.0, 0.0, dark.count(), lit.count()};
-    if (out.darkPixels == 0 || out.litPixels == 0)
-        return makeError("the camera of scene '{}' sees {} pixels of the dark region and {} of the lit one at frame {}, {}x{}: "
-                         "both must be in view", scene.name, out.darkPixels, out.litPixels, frame, w, h);
-    auto t = lightLeakScore(test.image, dark, lit);
-    if (!t) return makeError("test {}: {}", test.path, t.error().message);
-    auto ref = lightLeakScore(reference.image, dark, lit);
-    if (!ref) return makeError("reference {}: {}", reference.path, ref.error().message);
-    out.test = *t;
-    out.reference = *ref;
-    return out;
+// "  0.0123 (inside 2x the floor)" for the printed floor block.
+std::string floorText(const nlohmann::json& floor, const nlohmann::json& inside, const char* key, bool psnr = false) {
+    const auto f = floor.find(key);
+    if (f == floor.end() || !f->is_number()) return "-";
+    const auto in = inside.find(key);
+    const std::string verdict = in != inside.end() && in->is_boolean() ? (in->get<bool>() ? "  INSIDE 2x the floor" : "") : "";
+    return (psnr ? fmt::format("{:.4f}", f->get<double>()) : fmt::format("{:.6g}", f->get<double>())) + verdict;
 }
-
-struct HeatmapResult {
-    std::string metricName;
-    float low = 0.0f, high = 1.0f;
-};
 
 int runCompare(const CompareArgs& args) {
     auto fail = [](const std::string& message) { return failCommand(kCommand, message); };
@@ -134,17 +75,17 @@ int runCompare(const CompareArgs& args) {
     if (!std::isfinite(args.exposureEv)) return fail(fmt::format("--exposure: {} is not a finite number", args.exposureEv));
     if (!(args.pixelsPerDegree > 0.0) || !std::isfinite(args.pixelsPerDegree))
         return fail(fmt::format("--ppd: {} is not a positive number", args.pixelsPerDegree));
-    const std::optional<HeatmapMetric> heatmapMetric = parseHeatmapMetric(args.heatmapMetric);
-    if (!heatmapMetric)
-        return fail(fmt::format("--heatmap-metric: unknown metric '{}' (known: flip, flip-ldr, flip-hdr, relmse, abs)",
-                                args.heatmapMetric));
+    auto heatmapMetric = parseHeatmapMetric(args.heatmapMetric);
+    if (!heatmapMetric) return fail(heatmapMetric.error().message);
+    CompareRequest request;
+    request.pixelsPerDegree = args.pixelsPerDegree;
     if (!args.heatmapPath.empty()) {
         auto format = imageFormatFor(args.heatmapPath);
         if (!format) return fail("--heatmap: " + format.error().message);
         if (*format != ImageFormat::Png) return fail(fmt::format("--heatmap: {}: heat maps are written as .png", args.heatmapPath));
         if (auto writable = checkWritable(args.heatmapPath); !writable) return fail("--heatmap: " + writable.error().message);
+        request.heatmap = *heatmapMetric;
     }
-    std::optional<Scene> leakScene;
     if (args.leakScene.empty()) {
         if (args.sceneParamsGiven) return fail("--scene-param: applies to --leak-scene, which is not given");
         if (args.frameGiven) return fail("--frame: applies to --leak-scene, which is not given");
@@ -154,81 +95,45 @@ int runCompare(const CompareArgs& args) {
         if (!scene->leakRegions)
             return fail(fmt::format("--leak-scene: scene '{}' declares no leak regions (two-rooms does; a scene file "
                                     "declares them with \"leakRegions\", docs/scene.md)", args.leakScene));
-        leakScene = std::move(*scene);
+        request.leak = LeakRequest{std::move(*scene), args.leakScene, args.frame};
     }
 
-    auto test = loadInput(args.testPath, radianceToneMap);
+    auto test = loadCompareInput(args.testPath, radianceToneMap);
     if (!test) return fail(test.error().message);
-    auto reference = loadInput(args.referencePath, radianceToneMap);
+    auto reference = loadCompareInput(args.referencePath, radianceToneMap);
     if (!reference) return fail(reference.error().message);
-    if (test->image.width() != reference->image.width() || test->image.height() != reference->image.height())
-        return fail(fmt::format("images differ in size: test {} is {}x{}, reference {} is {}x{}", test->path,
-                                test->image.width(), test->image.height(), reference->path, reference->image.width(),
-                                reference->image.height()));
-    if (!test->radiance && !reference->radiance && (args.exposureGiven || args.toneCurveGiven))
-        spdlog::warn("compare: --exposure and --tonemap apply to EXR radiance; both inputs are PNG display images");
-    if (test->radiance != reference->radiance)
-        spdlog::warn("compare: comparing a PNG display image with EXR radiance; the linear metrics (MSE, RMSE, relMSE, "
-                     "MAE, HDR-FLIP) treat the PNG's decoded display values as radiance");
-
-    std::optional<LeakResult> leak;
-    if (leakScene) {
-        // A ratio of radiance: display values (tone-mapped, clamped) would give another number.
-        for (const Input* in : {&*test, &*reference})
-            if (!in->radiance) return fail(fmt::format("--leak-scene: {} is a display image (PNG); the leak score needs EXR radiance", in->path));
-        auto scores = leakScores(*leakScene, args.frame, *test, *reference);
-        if (!scores) return fail("--leak-scene: " + scores.error().message);
-        leak = *scores;
+    if (test->image.width() == reference->image.width() && test->image.height() == reference->image.height()) {
+        if (!test->radiance && !reference->radiance && (args.exposureGiven || args.toneCurveGiven))
+            spdlog::warn("compare: --exposure and --tonemap apply to EXR radiance; both inputs are PNG display images");
+        if (test->radiance != reference->radiance)
+            spdlog::warn("compare: comparing a PNG display image with EXR radiance; the linear metrics (MSE, RMSE, relMSE, "
+                         "MAE, HDR-FLIP) treat the PNG's decoded display values as radiance");
+    }
+    // The reference's noise floor, when `bounce reference --stats` left its record beside it.
+    if (reference->radiance) {
+        auto noise = findReferenceNoise(args.referencePath);
+        if (!noise) return fail(noise.error().message);
+        request.noise = std::move(*noise);
     }
 
-    CompareOptions options;
-    options.testToneMap = test->toneMap;
-    options.referenceToneMap = reference->toneMap;
-    options.pixelsPerDegree = args.pixelsPerDegree;
-    CompareMaps maps;
-    auto metrics = compareImages(test->image, reference->image, options, &maps);
-    if (!metrics) return fail(metrics.error().message);
-
-    std::optional<HeatmapResult> heatmap;
-    if (!args.heatmapPath.empty()) {
-        HeatmapMetric which = *heatmapMetric;
-        // "flip" follows the inputs: HDR-FLIP for two radiance images, LDR-FLIP when a display image is involved.
-        if (which == HeatmapMetric::Flip)
-            which = test->radiance && reference->radiance ? HeatmapMetric::FlipHdr : HeatmapMetric::FlipLdr;
-        HeatmapResult h;
-        ErrorMap map;
-        if (which == HeatmapMetric::FlipLdr || which == HeatmapMetric::FlipHdr) {
-            const bool hdr = which == HeatmapMetric::FlipHdr;
-            h.metricName = hdr ? "flip-hdr" : "flip-ldr";
-            map = std::move(hdr ? maps.flipHdr : maps.flipLdr);  // FLIP is in [0, 1] by construction
-        } else {
-            const bool rel = which == HeatmapMetric::RelMse;
-            h.metricName = rel ? "relmse" : "abs";
-            map = rel ? relativeSquaredErrorMap(test->image, reference->image)
-                      : absoluteErrorMap(test->image, reference->image);
-            // Unbounded errors: bar from 0 to the 99th percentile (or the maximum, or 1 for a zero map).
-            h.high = map.percentile(kHeatmapTopPercentile);
-            if (!(h.high > 0.0f)) h.high = map.maxValue();
-            if (!(h.high > 0.0f)) h.high = 1.0f;
-        }
-        if (auto written = writeHeatmap(args.heatmapPath, map, h.low, h.high); !written)
+    auto comparison = compareInputs(*test, *reference, request);
+    if (!comparison) return fail(comparison.error().message);
+    const Comparison& c = *comparison;
+    if (c.heatmap)
+        if (auto written = writeHeatmap(args.heatmapPath, c.heatmap->map, c.heatmap->low, c.heatmap->high); !written)
             return fail(written.error().message);
-        heatmap = h;
-    }
 
-    const ErrorMetrics& m = *metrics;
+    const ErrorMetrics& m = c.metrics;
     if (args.json) {
-        nlohmann::json j;
+        nlohmann::json j = comparisonJson(c);
         j["test"] = inputJson(*test);
         j["reference"] = inputJson(*reference);
         j["pixelsPerDegree"] = args.pixelsPerDegree;
-        j["relMseEpsilon"] = kRelMseEpsilon;
-        j["metrics"] = toJson(m);
-        if (heatmap)
-            j["heatmap"] = {{"path", args.heatmapPath}, {"metric", heatmap->metricName}, {"low", heatmap->low}, {"high", heatmap->high}};
-        if (leak)
-            j["leak"] = {{"scene", args.leakScene}, {"frame", args.frame}, {"test", leak->test}, {"reference", leak->reference},
-                         {"darkPixels", leak->darkPixels}, {"litPixels", leak->litPixels}};
+        if (c.heatmap) j["heatmap"]["path"] = args.heatmapPath;
+        if (c.leak) {
+            j["leak"]["scene"] = args.leakScene;
+            j["leak"]["frame"] = args.frame;
+        }
         fmt::print("{}\n", j.dump(2));
         return 0;
     }
@@ -248,12 +153,32 @@ int runCompare(const CompareArgs& args) {
     fmt::print("FLIP LDR   {:<12.6f} displayed, mean, {:.2f} ppd\n", m.flipLdr, args.pixelsPerDegree);
     fmt::print("FLIP HDR   {:<12.6f} linear, mean, {:.2f} ppd, {} exposures {:+.2f} .. {:+.2f} EV\n", m.flipHdr,
                args.pixelsPerDegree, m.hdrFlipExposures.count, m.hdrFlipExposures.startEv, m.hdrFlipExposures.stopEv);
-    if (leak)
+    fmt::print("energy     {:<12.6g} test mean / reference mean\n", m.energy);
+    if (c.noise) {
+        const ReferenceNoise& n = *c.noise;
+        fmt::print("noise floor: what an exact image would score against this reference ({} spp, {:.2f}% noise per pixel; "
+                   "{}{}); a metric within {}x of its floor cannot be told from the reference's noise\n",
+                   n.samplesPerPixel, 100.0 * n.meanPixelRelativeStdError, n.record.string(),
+                   n.floorFromRecord ? ", its floors at the default display transforms" : ", variance " + n.variance.string(),
+                   kNoiseFloorFactor);
+        const nlohmann::json& f = n.floor;
+        const nlohmann::json& in = c.insideFloor;
+        fmt::print("  relMSE   {}\n", floorText(f, in, "relMse"));
+        if (c.relMseCorrected) fmt::print("  relMSE bias-corrected (relMSE minus its floor) {:.6g}\n", *c.relMseCorrected);
+        fmt::print("  relRMS   {}\n", floorText(f, in, "relRms"));
+        fmt::print("  MAE      {}\n", floorText(f, in, "mae"));
+        fmt::print("  PSNR     {}\n", floorText(f, in, "psnr", true));
+        fmt::print("  SSIM     {}\n", floorText(f, in, "ssim"));
+        fmt::print("  FLIP LDR {}\n", floorText(f, in, "flipLdr"));
+        fmt::print("  FLIP HDR {}\n", floorText(f, in, "flipHdr"));
+        fmt::print("  energy   {} (standard error of the reference's mean)\n", floorText(f, in, "energy"));
+    }
+    if (c.leak)
         fmt::print("leak       {:<12.6g} test, dark/lit mean luminance on {}'s leak regions at frame {} ({} and {} pixels); reference {:.6g}\n",
-                   leak->test, args.leakScene, args.frame, leak->darkPixels, leak->litPixels, leak->reference);
-    if (heatmap)
-        fmt::print("heat map   {} ({} per pixel, colour bar {:g} .. {:g})\n", args.heatmapPath, heatmap->metricName,
-                   heatmap->low, heatmap->high);
+                   c.leak->test, args.leakScene, args.frame, c.leak->darkPixels, c.leak->litPixels, c.leak->reference);
+    if (c.heatmap)
+        fmt::print("heat map   {} ({} per pixel, colour bar {:g} .. {:g})\n", args.heatmapPath, c.heatmap->metricName,
+                   c.heatmap->low, c.heatmap->high);
     return 0;
 }
 

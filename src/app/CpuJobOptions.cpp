@@ -4,6 +4,7 @@
 #include "core/ImageIo.h"
 #include "core/Log.h"
 #include "core/Resources.h"
+#include "metrics/NoiseFloor.h"
 
 #include <charconv>
 #include <cmath>
@@ -46,10 +47,11 @@ Expected<CpuJobCommon> checkCpuJobArgs(const CpuJobArgs& a, const char* command,
     BOUNCE_TRY(c.sceneParams, parseAssignments(a.sceneParams, "--scene-param"));
     if (c.sceneParams.size() != a.sceneParams.size()) return makeError("--scene-param: a key is given twice");
     BOUNCE_TRY(c.size, parseSize(a.size));
-    // Per pixel: the path tracer's double-precision sums (40 B), their copy kept for a time limit
-    // (40 B), the float image (12 B) and its encoded file (up to 12 B), rounded up: an estimate that
-    // turns an impossible size into an error instead of an allocation failure or the OOM killer.
-    constexpr uint64_t kBytesPerPixel = 128;
+    // Per pixel: the path tracer's double-precision sums (64 B), their copy kept for a time limit
+    // (64 B), the float image and the variance image (12 B each) and their encoded files (up to 12 B
+    // each), rounded up: an estimate that turns an impossible size into an error instead of an
+    // allocation failure or the OOM killer.
+    constexpr uint64_t kBytesPerPixel = 192;
     BOUNCE_TRY_VOID(checkMemoryBudget(static_cast<uint64_t>(c.size.x) * static_cast<uint64_t>(c.size.y) * kBytesPerPixel,
                                       fmt::format("--size '{}': the image buffers", a.size)));
     BOUNCE_TRY(c.bounces, parseBounces(a.bounces, unbounded));
@@ -59,15 +61,79 @@ Expected<CpuJobCommon> checkCpuJobArgs(const CpuJobArgs& a, const char* command,
     if (!std::isfinite(a.exposureEv)) return makeError("--exposure: {} is not a finite number", a.exposureEv);
     auto curve = parseToneCurve(a.toneCurve);
     if (!curve) return makeError("--tonemap: {}", curve.error().message);
-    auto format = imageFormatFor(a.out);
-    if (!format) return makeError("--out: {}", format.error().message);
-    const bool toneMapGiven = (a.exposureOption && a.exposureOption->count() > 0) || (a.toneCurveOption && a.toneCurveOption->count() > 0);
-    if (*format == ImageFormat::Exr && toneMapGiven)
-        spdlog::warn("{}: --exposure and --tonemap apply to PNG output; {} holds linear radiance", command, a.out);
+    if (!a.out.empty()) {
+        auto format = imageFormatFor(a.out);
+        if (!format) return makeError("--out: {}", format.error().message);
+        const bool toneMapGiven = (a.exposureOption && a.exposureOption->count() > 0) || (a.toneCurveOption && a.toneCurveOption->count() > 0);
+        if (*format == ImageFormat::Exr && toneMapGiven)
+            spdlog::warn("{}: --exposure and --tonemap apply to PNG output; {} holds linear radiance", command, a.out);
+    }
     if (a.indirectOnly && c.bounces == 0)
         spdlog::warn("{}: --indirect-only with --bounces 0 keeps nothing: the image is black by definition", command);
     c.toneMap = ToneMap{a.exposureEv, *curve};
     return c;
+}
+
+Expected<ReferenceJob> referenceJobFromArgs(const ReferenceArgs& args) {
+    BOUNCE_TRY(const CpuJobCommon common, checkCpuJobArgs(args, "reference", PathTracerSettings::kUnbounded));
+    if (args.spp == 0) return makeError("--spp: 0: at least one sample per pixel is needed");
+    if (!args.variance.empty() && args.stats.empty())
+        return makeError("--variance: needs --stats (the run record names the variance image for `bounce compare`)");
+    ReferenceJob job;
+    job.scene = args.scene;
+    job.sceneParams = common.sceneParams;
+    job.settings.width = common.size.x;
+    job.settings.height = common.size.y;
+    job.settings.samplesPerPixel = args.spp;
+    job.settings.bounces = common.bounces;
+    job.settings.indirectOnly = args.indirectOnly;
+    job.settings.diffuseOnly = args.diffuseOnly;
+    job.settings.seed = args.seed;
+    job.settings.timeLimitSeconds = args.timeLimit;
+    job.settings.threads = args.threads;
+    job.settings.frame = args.frame;
+    job.output = args.out;
+    job.stats = args.stats;
+    job.variance = args.variance;
+    job.toneMap = common.toneMap;
+    job.amendRecord = addNoiseFloor;
+    return job;
+}
+
+Expected<PhotonMapJob> photonMapJobFromArgs(const PhotonMapArgs& args) {
+    BOUNCE_TRY(const CpuJobCommon common, checkCpuJobArgs(args, "photon-map", PhotonMapSettings::kUnbounded));
+    if (args.photons == 0) return makeError("--photons: 0: at least one photon is needed");
+    if (args.k < 2) return makeError("--k: {}: the estimate needs at least 2 nearest photons", args.k);
+    if (!(args.maxRadius >= 0.0f) || !std::isfinite(args.maxRadius))
+        return makeError("--max-radius: {} is not a number of metres >= 0", args.maxRadius);
+    if (args.spp == 0) return makeError("--spp: 0: at least one camera ray per pixel is needed");
+    PhotonMapJob job;
+    job.scene = args.scene;
+    job.sceneParams = common.sceneParams;
+    PhotonMapSettings& s = job.settings;
+    s.width = common.size.x;
+    s.height = common.size.y;
+    s.photons = args.photons;
+    s.k = args.k;
+    s.maxRadius = args.maxRadius;
+    s.samplesPerPixel = args.spp;
+    s.bounces = common.bounces;
+    s.indirectOnly = args.indirectOnly;
+    s.diffuseOnly = args.diffuseOnly;
+    s.seed = args.seed;
+    s.timeLimitSeconds = args.timeLimit;
+    s.threads = args.threads;
+    s.frame = args.frame;
+    job.output = args.out;
+    job.stats = args.stats;
+    job.toneMap = common.toneMap;
+    return job;
+}
+
+void addNoiseFloor(nlohmann::ordered_json& record, const PathTracerResult& result) {
+    auto floor = referenceNoiseFloor(result.radiance, result.variance);
+    record["noise"]["floor"] = floor ? nlohmann::ordered_json(noiseFloorJson(*floor))
+                                     : nlohmann::ordered_json({{"error", floor.error().message}});
 }
 
 }  // namespace bounce

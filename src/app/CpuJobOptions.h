@@ -4,6 +4,8 @@
 // before any work. Each command adds its own (--spp, --photons, ...) and fills its job from these.
 #include "core/Error.h"
 #include "core/ToneMap.h"
+#include "reference/PhotonMapJob.h"
+#include "reference/ReferenceJob.h"
 #include "scene/SceneLoader.h"
 
 #include <CLI/CLI.hpp>
@@ -51,6 +53,28 @@ struct CpuJobCommon {
     int bounces = 0;  // kUnbounded (-1) for 'unbounded'
     ToneMap toneMap;
 };
+// An empty `out` is allowed (no file is written; the library's callers keep the result).
 Expected<CpuJobCommon> checkCpuJobArgs(const CpuJobArgs& args, const char* command, int unbounded);
+
+// `bounce reference` and `bounce photon-map` as library calls (the commands and `import bounce`):
+// every flag checked, one-line errors naming it, and the job filled in. The scene is loaded by the
+// caller (`args.scene` names it in the record). Writing files is the job's: none when `out` is empty.
+struct ReferenceArgs : CpuJobArgs {
+    uint32_t spp = 256;
+    std::string variance;  // --variance: the per-pixel variance image (.exr) beside the image
+};
+Expected<ReferenceJob> referenceJobFromArgs(const ReferenceArgs& args);
+
+struct PhotonMapArgs : CpuJobArgs {
+    uint64_t photons = 1'000'000;
+    int k = 100;
+    float maxRadius = 0.0f;
+    uint32_t spp = 4;
+};
+Expected<PhotonMapJob> photonMapJobFromArgs(const PhotonMapArgs& args);
+
+// The reference's noise floors (metrics/NoiseFloor.h, at compare's default display transforms) in its
+// run record's "noise": {"floor": {"relMse": ..., ...}}; what `bounce compare` reads beside it.
+void addNoiseFloor(nlohmann::ordered_json& record, const PathTracerResult& result);
 
 }  // namespace bounce

@@ -27,13 +27,6 @@ namespace {
 constexpr const char* kCommand = "photon-map";
 constexpr int kBarWidth = 30;
 
-struct PhotonMapArgs : CpuJobArgs {
-    uint64_t photons = 1'000'000;
-    int k = 100;
-    float maxRadius = 0.0f;
-    uint32_t spp = 4;
-};
-
 class ProgressBar {
 public:
     explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
@@ -64,38 +57,14 @@ private:
 
 int runPhotonMap(const PhotonMapArgs& args) {
     const auto fail = [](const std::string& message) { return failCommand(kCommand, message); };
-    auto common = checkCpuJobArgs(args, kCommand, PhotonMapSettings::kUnbounded);
-    if (!common) return fail(common.error().message);
-    if (args.photons == 0) return fail("--photons: 0: at least one photon is needed");
-    if (args.k < 2) return fail(fmt::format("--k: {}: the estimate needs at least 2 nearest photons", args.k));
-    if (!(args.maxRadius >= 0.0f) || !std::isfinite(args.maxRadius))
-        return fail(fmt::format("--max-radius: {} is not a number of metres >= 0", args.maxRadius));
-    if (args.spp == 0) return fail("--spp: 0: at least one camera ray per pixel is needed");
-
-    PhotonMapJob job;
-    job.scene = args.scene;
-    job.sceneParams = common->sceneParams;
-    PhotonMapSettings& s = job.settings;
-    s.width = common->size.x;
-    s.height = common->size.y;
-    s.photons = args.photons;
-    s.k = args.k;
-    s.maxRadius = args.maxRadius;
-    s.samplesPerPixel = args.spp;
-    s.bounces = common->bounces;
-    s.indirectOnly = args.indirectOnly;
-    s.diffuseOnly = args.diffuseOnly;
-    s.seed = args.seed;
-    s.timeLimitSeconds = args.timeLimit;
-    s.threads = args.threads;
-    s.frame = args.frame;
-    job.output = args.out;
-    job.stats = args.stats;
-    job.toneMap = common->toneMap;
+    auto checked = photonMapJobFromArgs(args);
+    if (!checked) return fail(checked.error().message);
+    const PhotonMapJob& job = *checked;
+    const PhotonMapSettings& s = job.settings;
 
     auto scene = loadScene(args.scene, job.sceneParams);
     if (!scene) return fail(scene.error().message);
-    warnOneSidedSurfaces(*scene, common->size, args.frame);
+    warnOneSidedSurfaces(*scene, {s.width, s.height}, args.frame);
 
     ProgressBar bar(args.progress || ::isatty(STDERR_FILENO) != 0);
     auto result = runPhotonMapJob(*scene, job, [&](const PhotonMapProgress& p) { bar.update(p); });

@@ -27,10 +27,6 @@ constexpr const char* kCommand = "reference";
 // Width of the progress bar in characters.
 constexpr int kBarWidth = 30;
 
-struct ReferenceArgs : CpuJobArgs {
-    uint32_t spp = 256;
-};
-
 // One line on stderr, redrawn after every pass.
 class ProgressBar {
 public:
@@ -65,29 +61,14 @@ int runReference(const ReferenceArgs& args) {
     const auto fail = [](const std::string& message) { return failCommand(kCommand, message); };
 
     // Every flag is checked before the scene is loaded, so a typo costs nothing.
-    auto common = checkCpuJobArgs(args, kCommand, PathTracerSettings::kUnbounded);
-    if (!common) return fail(common.error().message);
-    if (args.spp == 0) return fail("--spp: 0: at least one sample per pixel is needed");
-    ReferenceJob job;
-    job.scene = args.scene;
-    job.sceneParams = common->sceneParams;
-    job.settings.width = common->size.x;
-    job.settings.height = common->size.y;
-    job.settings.samplesPerPixel = args.spp;
-    job.settings.bounces = common->bounces;
-    job.settings.indirectOnly = args.indirectOnly;
-    job.settings.diffuseOnly = args.diffuseOnly;
-    job.settings.seed = args.seed;
-    job.settings.timeLimitSeconds = args.timeLimit;
-    job.settings.threads = args.threads;
-    job.settings.frame = args.frame;
-    job.output = args.out;
-    job.stats = args.stats;
-    job.toneMap = common->toneMap;
+    auto checked = referenceJobFromArgs(args);
+    if (!checked) return fail(checked.error().message);
+    const ReferenceJob& job = *checked;
+    const glm::ivec2 size{job.settings.width, job.settings.height};
 
     auto scene = loadScene(args.scene, job.sceneParams);
     if (!scene) return fail(scene.error().message);
-    warnOneSidedSurfaces(*scene, common->size, args.frame);
+    warnOneSidedSurfaces(*scene, size, args.frame);
 
     ProgressBar bar(args.progress || ::isatty(STDERR_FILENO) != 0);
     auto result = runReferenceJob(*scene, job, [&](const RenderProgress& p) { bar.update(p, args.timeLimit); });
@@ -118,6 +99,9 @@ void registerReferenceCommand(CLI::App& root, CommandAction& action) {
                       "Use only the Lambert lobe after the first reflection",
                       "Stop after the last pass that fits in SEC seconds (0 = no limit); the record keeps the spp reached"});
     cmd->add_option("--spp", args->spp, "Samples (camera paths) per pixel")->capture_default_str();
+    cmd->add_option("--variance", args->variance,
+                    "Also write the per-pixel variance of the image (.exr, needs --stats): `bounce compare` reads it "
+                    "to print the reference's noise floor of every metric");
     cmd->callback([&action, args] { action = [args] { return runReference(*args); }; });
 }
 

@@ -1,6 +1,7 @@
 // `bounce render`: headless rendering of one technique on one scene, the main path of the lab.
 #include "app/Cli.h"
 #include "app/Options.h"
+#include "app/RenderSession.h"
 #include "app/RunRecord.h"
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
@@ -10,6 +11,8 @@
 #include "techniques/Registry.h"
 
 #include <spdlog/spdlog.h>
+
+#include <optional>
 
 namespace bounce {
 
@@ -32,43 +35,33 @@ struct RenderOptions {
 
 // --camera-path: every frame of the path's time range, each written to the --out pattern. A failure
 // part way removes the frames already written, so a run leaves all of its frames or none.
-int renderCameraPath(const RenderOptions& o, Scene& scene, std::unique_ptr<Technique> technique,
-                     render::RenderSettings renderSettings, glm::ivec2 size, Component component) {
+int renderCameraPath(const RenderOptions& o, const CameraPath& path, RenderSession& session, Component component) {
     const std::string cmd = "render";
-    auto path = readCameraPath(o.cameraPath);
-    if (!path.ok()) return failCommand(cmd, "--camera-path " + path.error().message);
-    if (auto r = applyLightPoses(scene, path->lights); !r.ok()) return failCommand(cmd, "--camera-path " + o.cameraPath + ": " + r.error().message);
-    if (!path->scene.empty() && path->scene != scene.name)
-        spdlog::warn("camera path {} was recorded on scene '{}', replayed on '{}'", o.cameraPath, path->scene, scene.name);
-    auto context = gl::Context::createHeadless(o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
-    if (!context.ok()) return failCommand(cmd, context.error().message);
-    if (auto r = applyAllSettings(scene, *technique, renderSettings, o.settings, (*context)->info().profile); !r.ok())
-        return failCommand(cmd, r.error().message);
-    auto pipeline = Pipeline::create(scene, std::move(technique), size, renderSettings);
-    if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
-    ToneMap toneMap;
-    toneMap.exposureEv = renderSettings.exposure;
-    toneMap.curve = *parseToneCurve(renderSettings.toneCurve);
+    Scene& scene = session.scene();
+    if (auto r = applyLightPoses(scene, path.lights); !r.ok()) return failCommand(cmd, "--camera-path " + o.cameraPath + ": " + r.error().message);
+    if (!path.scene.empty() && path.scene != scene.name)
+        spdlog::warn("camera path {} was recorded on scene '{}', replayed on '{}'", o.cameraPath, path.scene, scene.name);
+    const ToneMap toneMap = session.toneMap();
     std::vector<std::string> written;
     auto fail = [&](const std::string& message) {
         for (const std::string& f : written) std::filesystem::remove(f);
         return failCommand(cmd, message);
     };
     std::vector<FrameStats> frames;
-    const auto [first, last] = path->frameRange(scene.frameRate);
+    const auto [first, last] = path.frameRange(scene.frameRate);
     for (uint32_t f = first; f <= last; ++f) {
-        const Camera camera = path->evaluate(scene.timeOfFrame(f)).applyTo(scene.camera);
-        frames.push_back((*pipeline)->renderFrame(f, &camera));
-        const Image image = (*pipeline)->readback(component);
-        if (auto r = checkFinite(image, fmt::format("{} output of frame {}", o.technique, f)); !r.ok()) return fail(r.error().message);
+        const Camera camera = path.evaluate(scene.timeOfFrame(f)).applyTo(scene.camera);
+        frames.push_back(session.renderFrame(f, &camera));
+        auto image = session.readback(component, fmt::format(" of frame {}", f));
+        if (!image.ok()) return fail(image.error().message);
         const std::string file = *formatFramePattern(o.out, f);
-        if (auto r = writeImage(file, image, toneMap); !r.ok()) return fail(r.error().message);
+        if (auto r = writeImage(file, *image, toneMap); !r.ok()) return fail(r.error().message);
         written.push_back(file);
     }
     if (!o.stats.empty()) {
         nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
                                 {"camera_path", o.cameraPath}, {"frame_count", frames.size()}, {"start_frame", first}};
-        const auto record = renderRunRecord(scene, **pipeline, frames, (*context)->info(), extra);
+        const auto record = session.runRecord(frames, extra);
         if (auto r = writeTextFileAtomic(o.stats, record.dump(2) + "\n"); !r.ok()) return fail(r.error().message);
     }
     spdlog::info("{} on {}: {} camera-path frames ({}..{}) written to {}", o.technique, scene.name, frames.size(), first, last, o.out);
@@ -97,59 +90,49 @@ int runRender(const RenderOptions& o) {
     if (auto w = checkWritable(firstOut); !w.ok()) return failCommand(cmd, "--out " + w.error().message);
     if (!o.stats.empty())
         if (auto w = checkWritable(o.stats); !w.ok()) return failCommand(cmd, "--stats " + w.error().message);
-    auto technique = createTechnique(o.technique);
-    if (!technique.ok()) return failCommand(cmd, "--technique: " + technique.error().message);
+    auto technique = createRenderTechnique(o.technique);
+    if (!technique.ok()) return failCommand(cmd, technique.error().message);
     auto scene = loadSceneWithParams(o.scene, o.sceneParams);
     if (!scene.ok()) return failCommand(cmd, scene.error().message);
-    // As `bounce reference` (PathTracer::create): a black image is not a render of anything.
-    if (!scene->emitsLight())
-        return failCommand(cmd, fmt::format("scene '{}': no light source (no light with non-zero power and no object "
-                                            "with an emissive material)",
-                                            scene->name));
-    render::RenderSettings renderSettings;
-    if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings); !r.ok())
-        return failCommand(cmd, r.error().message);
-    warnOneSidedSurfaces(*scene, *size, static_cast<uint32_t>(o.startFrame));
-    if (!o.cameraPath.empty()) return renderCameraPath(o, *scene, std::move(*technique), renderSettings, *size, *component);
-
+    std::optional<CameraPath> path;
+    if (!o.cameraPath.empty()) {
+        auto read = readCameraPath(o.cameraPath);
+        if (!read.ok()) return failCommand(cmd, "--camera-path " + read.error().message);
+        path = std::move(*read);
+    }
     // A run whose timings are recorded (--stats) gets no debug context: synchronous KHR_debug output
-    // serialises the driver, and bench/ measures without it (docs/gpu.md "Measured runs").
-    auto context = gl::Context::createHeadless(o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
-    if (!context.ok()) return failCommand(cmd, context.error().message);
-    // The device profile's defaults (core/DeviceProfile.h), then the scene's and the command line's values again.
-    if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings, (*context)->info().profile); !r.ok())
-        return failCommand(cmd, r.error().message);
-    auto pipeline = Pipeline::create(*scene, std::move(*technique), *size, renderSettings);
-    if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
+    // serialises the driver, and bench/ measures without it (docs/gpu.md "Measured runs"). The session
+    // applies the device profile's defaults under the scene's and --set values.
+    auto session = RenderSession::create(std::make_shared<Scene>(std::move(*scene)), std::move(*technique), *size, o.settings,
+                                         static_cast<uint32_t>(o.startFrame),
+                                         o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
+    if (!session.ok()) return failCommand(cmd, session.error().message);
+    if (path) return renderCameraPath(o, *path, **session, *component);
 
     std::vector<FrameStats> frames;
     for (int f = o.startFrame; f < o.startFrame + o.frames; ++f) {
-        FrameStats stats = (*pipeline)->renderFrame(static_cast<uint32_t>(f));
+        FrameStats stats = (*session)->renderFrame(static_cast<uint32_t>(f));
         // --stats-every N keeps every Nth frame and the last, so a long run's record (and its memory) stays small.
         const int index = f - o.startFrame;
         if (index % o.statsEvery == 0 || index == o.frames - 1) frames.push_back(std::move(stats));
     }
     if (gl::Context::debugErrorCount() > 0)
         spdlog::warn("{} GL errors were reported during rendering", gl::Context::debugErrorCount());
-    const Image image = (*pipeline)->readback(*component);
-    if (auto r = checkFinite(image, fmt::format("{} output", o.technique)); !r.ok()) return failCommand(cmd, r.error().message);
-    ToneMap toneMap;
-    toneMap.exposureEv = renderSettings.exposure;
-    toneMap.curve = *parseToneCurve(renderSettings.toneCurve);
+    auto image = (*session)->readback(*component);
+    if (!image.ok()) return failCommand(cmd, image.error().message);
     // The image and its run record are written together: a failure leaves neither.
     OutputFiles outputs;
-    auto encoded = encodeImage(o.out, image, toneMap);
+    auto encoded = encodeImage(o.out, *image, (*session)->toneMap());
     if (!encoded.ok()) return failCommand(cmd, encoded.error().message);
     outputs.add(o.out, std::move(*encoded));
     if (!o.stats.empty()) {
         nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
                                 {"frame_count", o.frames}, {"start_frame", o.startFrame}, {"stats_every", o.statsEvery}};
-        const auto record = renderRunRecord(*scene, **pipeline, frames, (*context)->info(), extra);
-        outputs.add(o.stats, record.dump(2) + "\n");
+        outputs.add(o.stats, (*session)->runRecord(frames, extra).dump(2) + "\n");
     }
     if (auto r = outputs.commit(); !r.ok()) return failCommand(cmd, r.error().message);
     const auto medians = medianPassTimes(frames);
-    spdlog::info("{} on {}: median frame {:.2f} ms GPU, {:.2f} ms CPU", o.technique, scene->name,
+    spdlog::info("{} on {}: median frame {:.2f} ms GPU, {:.2f} ms CPU", o.technique, (*session)->scene().name,
                  medians.value("frame", 0.0), medians.value("cpu", 0.0));
     return 0;
 }

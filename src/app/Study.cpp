@@ -420,7 +420,10 @@ void expand(Study& study) {
             scopeSpec.erase("component");
             j.spec = {{"kind", "reference"}, {"scene", sceneSpecJson(study.scenes[scene])}, {"scope", scopeSpec},
                       {"size", {study.size.x, study.size.y}}, {"frame", frame}, {"spp", study.reference.spp},
-                      {"timeLimit", study.reference.timeLimit}, {"seed", study.reference.seed}};
+                      {"timeLimit", study.reference.timeLimit}, {"seed", study.reference.seed},
+                      // Its outputs include the variance image of the noise floors: a reference made
+                      // before them (no such key) is stale, and so are the compares that read it.
+                      {"outputs", {"image", "variance"}}};
             references[id] = j.spec;
             stage1.push_back(std::move(j));
         }

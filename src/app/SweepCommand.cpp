@@ -2,6 +2,7 @@
 // one job (--job ID, what GNU parallel and Slurm array tasks call), lists them (--list), or writes
 // job lists for existing schedulers (--emit parallel|slurm). docs/studies.md is the user's guide.
 #include "app/Cli.h"
+#include "app/StudyRun.h"
 #include "app/SweepJobs.h"
 #include "core/FileIo.h"
 #include "gpu/DeviceSelection.h"
@@ -72,19 +73,6 @@ std::string logName(const std::string& id) {
     for (char& c : out)
         if (c == '/') c = '~';
     return out + ".log";
-}
-
-// OUTPUT/study.json: the study as given plus its job list, for the report and for people.
-Expected<void> writeStudyCopy(const Study& s) {
-    std::error_code ec;
-    fs::create_directories(s.output, ec);
-    if (ec) return makeError("--out {}: cannot create the folder: {}", s.output.string(), ec.message());
-    BOUNCE_TRY(const std::string text, readTextFile(s.file));
-    json jobs = json::array();
-    for (const Job& j : s.jobs)
-        jobs.push_back({{"id", j.id}, {"kind", study::jobKindName(j.kind)}, {"stage", j.stage}, {"inputs", j.inputs}});
-    const json copy = {{"name", s.name}, {"file", s.file.string()}, {"study", json::parse(text)}, {"jobs", jobs}};
-    return writeTextFileAtomic(s.output / "study.json", copy.dump(2) + "\n");
 }
 
 class ProgressBar {
@@ -350,7 +338,7 @@ int runSweepWith(const SweepArgs& args) {
         if (auto r = study::runJob(s, *j); !r) return fail(fmt::format("{}: {}", j->id, r.error().message));
         return 0;
     }
-    if (auto w = writeStudyCopy(s); !w) return fail(w.error().message);
+    if (auto w = study::writeStudyCopy(s); !w) return fail(w.error().message);
     if (!args.emit.empty()) return emit(s, args);
     return runLocal(s, args);
 }

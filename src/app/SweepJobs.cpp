@@ -2,7 +2,9 @@
 // last, so a job killed halfway leaves images without a record: not finished, redone on the next run.
 #include "app/SweepJobs.h"
 
+#include "app/CpuJobOptions.h"
 #include "app/Options.h"
+#include "app/ProcessContext.h"
 #include "app/RunRecord.h"
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
@@ -12,6 +14,7 @@
 #include "metrics/FlickerMeter.h"
 #include "metrics/Heatmap.h"
 #include "metrics/LightLeak.h"
+#include "metrics/NoiseFloor.h"
 #include "reference/ReferenceJob.h"
 #include "techniques/Pipeline.h"
 
@@ -63,15 +66,9 @@ Expected<void> writeRecord(const Study& study, const Job& job, const json& recor
     return writeTextFileAtomic(recordPath(study, job), record.dump(2) + "\n");
 }
 
-// One headless context per process, made on first use (reference and compare jobs need none).
-Expected<gl::Context*> context() {
-    static std::unique_ptr<gl::Context> ctx;
-    if (!ctx) {
-        // Render and temporal jobs record timings: no debug context (docs/gpu.md "Measured runs").
-        BOUNCE_TRY(ctx, gl::Context::createHeadless(gl::measuredContextConfig()));
-    }
-    return ctx.get();
-}
+// The process's headless context (app/ProcessContext.h), made on first use (reference and compare jobs
+// need none). Render and temporal jobs record timings: no debug context (docs/gpu.md "Measured runs").
+Expected<gl::Context*> context() { return processContext(gl::measuredContextConfig()); }
 
 struct Loaded {
     Scene scene;
@@ -196,10 +193,14 @@ Expected<void> runReference(const Study& study, const Job& job) {
     rj.settings.threads = study.reference.threads;
     rj.settings.frame = job.frame;
     rj.output = folder / "image.exr";
+    rj.variance = folder / "variance.exr";  // the noise floors of the compares that read this reference
     BOUNCE_TRY(const PathTracerResult result, runReferenceJob(scene, rj));
     BOUNCE_TRY_VOID(writeImage(folder / "image.png", result.radiance, ToneMap{}));
-    json record = json(referenceRunRecord(scene, rj, result));
+    nlohmann::ordered_json ordered = referenceRunRecord(scene, rj, result);
+    addNoiseFloor(ordered, result);
+    json record = json(ordered);
     record["output"]["path"] = "image.exr";  // relative: output folders are copied between machines
+    record["noise"]["variance"] = "variance.exr";
     const json base = baseRecord(study, job, "ok");
     for (const auto& [k, v] : base.items()) record[k] = v;
     record["images"] = {{"image", "image.png"}};
@@ -241,12 +242,20 @@ Expected<void> runCompare(const Study& study, const Job& job) {
     const fs::path renderFolder = study.output / job.inputs[0], referenceFolder = study.output / job.inputs[1];
     BOUNCE_TRY(const Image test, readExr(renderFolder / (component + ".exr")));
     BOUNCE_TRY(const Image ref, readExr(referenceFolder / "image.exr"));
+    BOUNCE_TRY(const Image variance, readExr(referenceFolder / "variance.exr"));
     CompareMaps maps;
     BOUNCE_TRY(const ErrorMetrics metrics, compareImages(test, ref, CompareOptions{}, &maps));
     BOUNCE_TRY_VOID(writeHeatmap(folder / "heatmap.png", maps.flipHdr, 0.0f, 1.0f));  // FLIP lies in [0, 1]
     json m = toJson(metrics);
     m["relRms"] = relativeRmsError(test, ref);
+    // The reference's noise floor beside every metric (metrics/NoiseFloor.h, docs/metrics.md).
+    BOUNCE_TRY(const ErrorMetrics floor, referenceNoiseFloor(ref, variance, CompareOptions{}));
+    m["relMseCorrected"] = biasCorrectedRelMse(test, ref, variance);
     record["metrics"] = m;
+    record["floor"] = noiseFloorJson(floor);
+    record["insideFloor"] = insideNoiseFloorJson(metrics, floor);
+    record["floorFactor"] = kNoiseFloorFactor;
+    record["referenceNoise"] = reference.value("noise", json::object());
     record["component"] = component;
     record["heatmap"] = {{"path", "heatmap.png"}, {"metric", "flip-hdr"}, {"low", 0.0}, {"high", 1.0}};
     record["median_ms"] = render.value("median_ms", json::object());
@@ -286,13 +295,18 @@ Expected<void> runTemporal(const Study& study, const Job& job) {
     const TemporalSpec& t = study.temporal;
     // One reference per frame; frames that show the same moment (a held animation) share one image.
     std::map<std::string, Image> referenceImages;
+    std::map<std::string, ErrorMetrics> referenceFloors;  // the closed-form floors of each reference
     std::vector<const Image*> references;
+    std::vector<const ErrorMetrics*> floors;
     for (const std::string& id : job.inputs) {
         if (!referenceImages.count(id)) {
             BOUNCE_TRY_VOID(finishedInput(study, id));
             BOUNCE_TRY(referenceImages[id], readExr(study.output / id / "image.exr"));
+            BOUNCE_TRY(const Image variance, readExr(study.output / id / "variance.exr"));
+            BOUNCE_TRY(referenceFloors[id], linearNoiseFloor(referenceImages[id], variance));
         }
         references.push_back(&referenceImages[id]);
+        floors.push_back(&referenceFloors[id]);
     }
     BOUNCE_TRY(auto loaded, load(study, job));
     json record = baseRecord(study, job, "ok");
@@ -326,6 +340,12 @@ Expected<void> runTemporal(const Study& study, const Job& job) {
                    {"cpu_ms", stats.cpuMilliseconds}, {"relRms", relativeRmsError(image, ref)},
                    {"relMse", relativeSquaredErrorMap(image, ref).mean()}, {"meanLuminance", meanLuminance(image)},
                    {"referenceMeanLuminance", meanLuminance(ref)}};
+        // The frame's reference-noise floors (docs/metrics.md), and whether the error is within 2x of them.
+        const ErrorMetrics& floor = *floors[static_cast<size_t>(i)];
+        fr["relRmsFloor"] = std::isfinite(floor.relRms) ? json(floor.relRms) : json(nullptr);
+        fr["relMseFloor"] = floor.relMse;
+        fr["relRmsInsideFloor"] = insideNoiseFloor("relRms", fr["relRms"].get<double>(), floor.relRms);
+        fr["relMseInsideFloor"] = insideNoiseFloor("relMse", fr["relMse"].get<double>(), floor.relMse);
         fr["flicker"] = images.empty() ? json(nullptr) : pairFlicker(images.back(), image);
         fr["referenceFlicker"] = i == 0 ? json(nullptr) : pairFlicker(*references[static_cast<size_t>(i) - 1], ref);
         frames.push_back(fr);

@@ -28,6 +28,7 @@
 #include "core/FileIo.h"
 #include "core/ImageIo.h"
 #include "gpu/Context.h"
+#include "scene/SceneEdits.h"
 #include "techniques/Registry.h"
 
 #include <GLFW/glfw3.h>
@@ -162,8 +163,7 @@ int Viewer::run() {
     if (!bImage.empty()) uploadImage(bImageTexture, "viewer.bImage", bImage);
     duration = animationDuration(*scene);
     lastFrame = std::max(1, static_cast<int>(std::ceil(duration * scene->frameRate)));
-    for (size_t i = 0; i < scene->objects.size(); ++i)
-        if (scene->objects[i].isDynamic()) movableObjects.push_back(static_cast<int>(i));
+    for (size_t i : bounce::movableObjects(*scene)) movableObjects.push_back(static_cast<int>(i));
     if (!movableObjects.empty()) selectedObject = movableObjects.front();
     lastTime = glfwGetTime();
     glm::vec3 lo, hi;

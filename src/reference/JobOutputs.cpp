@@ -8,22 +8,33 @@
 
 namespace bounce {
 
-Expected<ImageFormat> checkJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats) {
+Expected<ImageFormat> checkJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats,
+                                      const std::filesystem::path& variance) {
     BOUNCE_TRY(const ImageFormat format, imageFormatFor(output));
     BOUNCE_TRY_VOID(checkWritable(output));
     if (!stats.empty()) {
         if (stats.extension() != ".json") return makeError("{}: the run record is JSON: use a .json file name", stats.string());
         BOUNCE_TRY_VOID(checkWritable(stats));
     }
+    if (!variance.empty()) {
+        if (variance.extension() != ".exr")
+            return makeError("{}: the variance image holds linear values: use an .exr file name", variance.string());
+        BOUNCE_TRY_VOID(checkWritable(variance));
+    }
     return format;
 }
 
 Expected<void> writeJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats, ImageFormat format,
-                               const Image& radiance, const ToneMap& toneMap, const nlohmann::ordered_json& record) {
-    // The image and its run record are written together: a failure leaves neither.
+                               const Image& radiance, const ToneMap& toneMap, const nlohmann::ordered_json& record,
+                               const std::filesystem::path& variancePath, const Image* variance) {
+    // The image, its variance and its run record are written together: a failure leaves none of them.
     OutputFiles outputs;
     BOUNCE_TRY(std::string image, encodeImage(output, radiance, format == ImageFormat::Png ? toneMap : ToneMap{}));
     outputs.add(output, std::move(image));
+    if (!variancePath.empty() && variance) {
+        BOUNCE_TRY(std::string bytes, encodeImage(variancePath, *variance, ToneMap{}));
+        outputs.add(variancePath, std::move(bytes));
+    }
     if (!stats.empty()) outputs.add(stats, record.dump(2) + "\n");
     return outputs.commit();
 }

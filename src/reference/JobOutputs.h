@@ -16,13 +16,16 @@
 
 namespace bounce {
 
-// Fails (naming the path) when the image's extension is unknown, a file cannot be written, or the
-// run record is not .json; `stats` may be empty (no record).
-Expected<ImageFormat> checkJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats);
+// Fails (naming the path) when the image's extension is unknown, a file cannot be written, the
+// run record is not .json or the variance image not .exr; `stats` and `variance` may be empty (none).
+Expected<ImageFormat> checkJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats,
+                                      const std::filesystem::path& variance = {});
 
-// Writes the image (PNG tone-mapped with `toneMap`, EXR linear) and, when `stats` is set, the record.
+// Writes the image (PNG tone-mapped with `toneMap`, EXR linear), when `stats` is set the record, and
+// when `variancePath` is set the image `variance` (EXR), all together: a failure leaves none of them.
 Expected<void> writeJobOutputs(const std::filesystem::path& output, const std::filesystem::path& stats, ImageFormat format,
-                               const Image& radiance, const ToneMap& toneMap, const nlohmann::ordered_json& record);
+                               const Image& radiance, const ToneMap& toneMap, const nlohmann::ordered_json& record,
+                               const std::filesystem::path& variancePath = {}, const Image* variance = nullptr);
 
 // {"name", "source", "asked", "params"} of the run record.
 nlohmann::ordered_json jobSceneRecord(const Scene& scene, const std::string& asked, const SceneParams& params);

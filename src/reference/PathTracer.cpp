@@ -100,6 +100,7 @@ struct PathTracer::Counters {
 // ones; together in one struct so that a pixel's sums share a cache line.
 struct PathTracer::PixelSums {
     glm::dvec3 radiance{0.0};
+    glm::dvec3 radiance2{0.0};  // per channel sum of squares: the variance image (noise floors, docs/metrics.md)
     double lum = 0.0;
     double lum2 = 0.0;
 };
@@ -546,6 +547,7 @@ void PathTracer::renderTile(int x0, int y0, int x1, int y1, uint32_t s0, uint32_
             PixelSums& p = sums[pixels[lane]];
             const double y = luminance(radiance);
             p.radiance += glm::dvec3(radiance);
+            p.radiance2 += glm::dvec3(radiance) * glm::dvec3(radiance);
             p.lum += y;
             p.lum2 += y * y;
             if (!startPath(lane)) {
@@ -627,12 +629,18 @@ PathTracerResult PathTracer::render(const ProgressCallback& progress) const {
         spdlog::warn("reference: {} non-finite samples were dropped", result.invalidSamples);
 
     result.radiance = Image(width, height);
+    result.variance = Image(width, height);
     const double n = static_cast<double>(done);
     double relSum = 0.0, varOfMeanSum = 0.0, meanSum = 0.0;
     uint64_t measured = 0;
     for (size_t i = 0; i < pixels; ++i) {
         const PixelSums& p = sums[i];
         result.radiance.data()[i] = glm::vec3(p.radiance / n);
+        if (done > 1) {
+            // Per channel, the unbiased sample variance over n, i.e. the variance of the pixel's mean.
+            const glm::dvec3 m = p.radiance / n;
+            result.variance.data()[i] = glm::vec3(glm::max(glm::dvec3(0.0), (p.radiance2 - n * m * m) / (n - 1.0)) / n);
+        }
         const double mean = p.lum / n;
         // Unbiased sample variance of the per-sample luminance; needs two samples.
         const double variance = done > 1 ? std::max(0.0, (p.lum2 - n * mean * mean) / (n - 1.0)) : 0.0;

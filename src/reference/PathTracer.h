@@ -73,6 +73,9 @@ struct NoiseEstimate {
 
 struct PathTracerResult {
     Image radiance;                   // linear RGB, W/(m^2 sr)
+    // Per pixel and channel, the estimated variance of `radiance` (the sample variance over the n samples,
+    // divided by n; 0 with one sample), (W/(m^2 sr))^2: what the noise floors of docs/metrics.md read.
+    Image variance;
     uint32_t samplesPerPixel = 0;     // reached (less than asked when the time limit stopped it)
     bool stoppedByTimeLimit = false;
     double buildSeconds = 0.0;        // BVH and light list

@@ -9,6 +9,11 @@ namespace bounce {
 
 Expected<PhotonMapResult> runPhotonMapJob(const Scene& scene, const PhotonMapJob& job,
                                           const PhotonMapProgressCallback& progress) {
+    if (job.output.empty()) {  // nothing written: the caller keeps the result (`import bounce`)
+        if (!job.stats.empty()) return makeError("a run record needs an output image");
+        BOUNCE_TRY(const PhotonMapper mapper, PhotonMapper::create(scene, job.settings));
+        return mapper.render(progress);
+    }
     BOUNCE_TRY(const ImageFormat format, checkJobOutputs(job.output, job.stats));
     BOUNCE_TRY(const PhotonMapper mapper, PhotonMapper::create(scene, job.settings));
     PhotonMapResult result = mapper.render(progress);

@@ -18,7 +18,7 @@ struct PhotonMapJob {
     std::string scene;  // as asked for: built-in name or file path (for the record)
     SceneParams sceneParams;
     PhotonMapSettings settings;
-    std::filesystem::path output;  // .exr: linear radiance; .png: tone-mapped with `toneMap`
+    std::filesystem::path output;  // .exr: linear radiance; .png: tone-mapped with `toneMap`; empty: none written
     std::filesystem::path stats;   // run record (JSON); empty for none
     ToneMap toneMap;
 };

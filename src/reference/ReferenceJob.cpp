@@ -10,11 +10,21 @@ namespace bounce {
 
 Expected<PathTracerResult> runReferenceJob(const Scene& scene, const ReferenceJob& job,
                                            const ProgressCallback& progress) {
-    BOUNCE_TRY(const ImageFormat format, checkJobOutputs(job.output, job.stats));
+    if (job.output.empty()) {
+        if (!job.stats.empty() || !job.variance.empty()) return makeError("a run record or variance image needs an output image");
+        BOUNCE_TRY(const PathTracer tracer, PathTracer::create(scene, job.settings));
+        return tracer.render(progress);
+    }
+    BOUNCE_TRY(const ImageFormat format, checkJobOutputs(job.output, job.stats, job.variance));
     BOUNCE_TRY(const PathTracer tracer, PathTracer::create(scene, job.settings));
     PathTracerResult result = tracer.render(progress);
-    BOUNCE_TRY_VOID(writeJobOutputs(job.output, job.stats, format, result.radiance, job.toneMap,
-                                    job.stats.empty() ? nlohmann::ordered_json() : referenceRunRecord(scene, job, result)));
+    nlohmann::ordered_json record;
+    if (!job.stats.empty()) {
+        record = referenceRunRecord(scene, job, result);
+        if (job.amendRecord) job.amendRecord(record, result);
+    }
+    BOUNCE_TRY_VOID(writeJobOutputs(job.output, job.stats, format, result.radiance, job.toneMap, record, job.variance,
+                                    &result.variance));
     return result;
 }
 
@@ -53,6 +63,12 @@ nlohmann::ordered_json referenceRunRecord(const Scene& scene, const ReferenceJob
           {"imageRelativeStdError", result.noise.imageRelativeError},
           {"pixelsMeasured", result.noise.pixelsMeasured}}},
     };
+    // The per-pixel variance image beside the image: what `bounce compare` and studies derive noise floors from.
+    // Relative to the record's folder, so the pair can be moved together.
+    if (!job.variance.empty())
+        record["noise"]["variance"] =
+            job.stats.empty() ? job.variance.string()
+                              : std::filesystem::absolute(job.variance).lexically_proximate(std::filesystem::absolute(job.stats).parent_path()).string();
     nlohmann::ordered_json renderer = jobLibraryVersions();
     // The vectorised shading kernel's variant on this CPU (docs/reference.md "Performance").
     renderer["shadingKernel"] = lambert::instructionSet();

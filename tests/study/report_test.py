@@ -31,9 +31,17 @@ check(isinstance(rows, list) and len(rows) == 8 and all(isinstance(x, dict) for 
       "results.json: one flat object per scene x variant (pandas.read_json reads a list of records)")
 direct = [x for x in rows if x["scene"] == "two-rooms" and x["technique"] == "direct"][0]
 check(direct["relMse"] > 0 and direct["frame_ms"] > 0 and direct["leak_test"] == 0.0, "rows carry metrics, times and leak")
+check(direct["relMse_floor"] > 0 and isinstance(direct["relMse_insideFloor"], bool) and direct["reference_scope"] == "b0"
+      and "relMseCorrected" in direct and direct["reference_noise"] > 0,
+      "rows carry each metric's noise floor, its inside-2x flag, the corrected relMSE and the reference's noise")
 with open(os.path.join(RESULTS, "results.csv"), newline="") as f:
     table = list(csv.DictReader(f))
-check(len(table) == 8 and "relMse" in table[0] and "pass_gbuffer_ms" in table[0], "results.csv has the same rows and columns")
+check(len(table) == 8 and "relMse" in table[0] and "pass_gbuffer_ms" in table[0] and "flipLdr_floor" in table[0],
+      "results.csv has the same rows and columns")
+with open(page) as f:
+    text = f.read()
+check("reference-noise floor" in text and 'class="inside"' in text,
+      "the page says which comparisons are inside the floor (grey cells)")
 
 bad = subprocess.run([BOUNCE, "report", os.path.join(RESULTS, "no-such-folder")], capture_output=True, text=True)
 check(bad.returncode != 0 and bad.stderr.count("\n") == 1 and "not a folder" in bad.stderr, "a bad folder: one-line error")

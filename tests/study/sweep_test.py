@@ -42,7 +42,7 @@ def comparable(record):
     # What must agree between two runs of the same job: the outcome, not the clock. Timings, host
     # and finish time differ by construction; images and metrics must not.
     keep = {k: record.get(k) for k in ("job", "kind", "status", "spec", "reason", "metrics", "leak", "flicker",
-                                       "referenceFlicker", "convergence")}
+                                       "referenceFlicker", "convergence", "floor", "insideFloor")}
     if "frames" in record and record["kind"] == "temporal":
         keep["frames"] = [{k: v for k, v in f.items() if k not in ("gpu_ms", "cpu_ms")} for f in record["frames"]]
     if record["kind"] == "reference":
@@ -94,6 +94,23 @@ check(len(rec) == 26, f"every job wrote its record ({len(rec)})")
 check(rec["render/cornell-box/radiosity-pr/default"]["status"] == "refused", "radiosity-pr refuses the spot-lit box")
 check(rec["compare/cornell-box/radiosity-pr/default"]["status"] == "skipped", "its compare is skipped")
 check(rec["compare/cornell-box/direct/default"]["metrics"]["relMse"] > 0, "compare records carry metrics")
+# Reference noise (docs/metrics.md "Reference noise floor"): every reference writes its variance image
+# and floors, every compare the floor beside each metric, whether it is within 2x, and the corrected relMSE.
+ref0 = rec["reference/cornell-box/all/f0000"]
+check(os.path.exists(os.path.join(local, "reference/cornell-box/all/f0000/variance.exr"))
+      and ref0["noise"]["variance"] == "variance.exr" and ref0["noise"]["floor"]["relMse"] > 0,
+      "references write variance.exr and their floors")
+c = rec["compare/cornell-box/ambient/radiance-0.05"]
+check(set(c["floor"]) >= {"relMse", "relRms", "ssim", "flipLdr", "flipHdr", "energy"}
+      and all(isinstance(c["insideFloor"][m], bool) for m in ("relMse", "relRms", "flipLdr"))
+      and abs(c["metrics"]["relMseCorrected"] - (c["metrics"]["relMse"] - c["floor"]["relMse"])) < 1e-9
+      and c["floor"]["relMse"] == ref0["noise"]["floor"]["relMse"],
+      "compare records carry the floor, the inside-2x flags and the corrected relMSE")
+# 4 spp at 16x16: references this noisy put ambient's error inside its floor on some metric.
+check(any(any(r.get("insideFloor", {}).values()) for j, r in rec.items() if j.startswith("compare/")),
+      "a 4-spp reference leaves some comparison inside its floor")
+t = rec["temporal/cornell-box/ambient/radiance-0.05"]["frames"]
+check(all(f["relRmsFloor"] > 0 and isinstance(f["relRmsInsideFloor"], bool) for f in t), "temporal frames carry their floors")
 leak = rec["compare/two-rooms/ambient/radiance-0.1"]["leak"]
 # The ambient term lights the dark room: a leak the direct technique does not have.
 check(leak["test"] > 0.05 and rec["compare/two-rooms/direct/default"]["leak"]["test"] == 0, "leak scores on two-rooms")

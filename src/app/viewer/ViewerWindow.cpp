@@ -3,6 +3,8 @@
 // object, and the window's geometry (letterboxing, reading the back buffer).
 #include "app/viewer/Viewer.h"
 
+#include "scene/SceneEdits.h"
+
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -74,17 +76,16 @@ void Viewer::pollEvents() {
 // This frame's presses of `key` (from the key callback of initWindow).
 int Viewer::pressCount(int key) const { return static_cast<int>(std::count(keyPresses.begin(), keyPresses.end(), key)); }
 
+// The scene edits of scene/SceneEdits.h (shared with `import bounce`); the indices are valid by construction.
 void Viewer::moveSelected(glm::vec3 delta) {
     if (selectObject) {
-        if (selectedObject >= 0) {
-            Object& obj = scene->objects[static_cast<size_t>(selectedObject)];
-            obj.transform = glm::translate(glm::mat4(1.0f), delta) * obj.transform;
+        if (selectedObject >= 0 && moveObject(*scene, static_cast<size_t>(selectedObject), delta).ok()) {
             // SceneGpu skips the upload when the time has not changed (a paused animation).
             for (Side* side : {&a, &b})
                 if (side->pipeline) side->pipeline->sceneGpu().invalidateObjects();
         }
     } else if (!scene->lights.empty()) {
-        scene->lights[static_cast<size_t>(selectedLight)].position += delta;
+        (void)moveLight(*scene, static_cast<size_t>(selectedLight), delta);
     }
 }
 
