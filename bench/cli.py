@@ -41,9 +41,11 @@ def render(bounce, scene, technique, size, frames, settings=None, params=None, o
             return json.load(f), rel(cmd)
 
 
-def compare(bounce, test, ref):
+def compare(bounce, test, ref, keys=None):
+    """`bounce compare --json test ref`'s metrics: all of them, or those named in `keys` (in that order)."""
     out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    return json.loads(out)["metrics"]
+    metrics = json.loads(out)["metrics"]
+    return metrics if keys is None else {k: metrics[k] for k in keys}
 
 
 def later(record):
@@ -51,9 +53,13 @@ def later(record):
     return record["frames"][1:] or record["frames"]
 
 
-def summary(values):
+def summary(values, n=True):
+    """min, median, max (and the count n unless n=False) of `values`."""
     values = list(values)
-    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
+    s = {"min": min(values), "median": statistics.median(values), "max": max(values)}
+    if n:
+        s["n"] = len(values)
+    return s
 
 
 def pass_ms(record, scope):

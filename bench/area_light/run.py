@@ -22,6 +22,7 @@ Frame times: GPU scope of the technique, median over the frames after the first 
 shaders on llvmpipe). The raw record goes to bench/results/area-light-<date>.json; bench/tables.py
 makes the README table from it. llvmpipe times are indicative; counts and ratios are the result.
 """
+import functools
 import json
 import os
 import statistics
@@ -31,16 +32,16 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
+from cli import compare as compare_metrics, rel, summary  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("relMse", "flipHdr", "nrmse"))
 
 CORNELL = {"scene": "cornell-box-area", "params": []}
 # The bouncing-square light of Fig. 5.15 (built-in scene area-screen, pattern=square).
 SQUARE = {"scene": "area-screen", "params": ["pattern=square"]}
 FRAMES = 3
-
-
-def rel(cmd):
-    return " ".join(os.path.relpath(c, ROOT) if os.path.isabs(c) and c.startswith(ROOT) else c for c in cmd)
 
 
 def render(bounce, case, size, settings=None, out=None, frames=FRAMES):
@@ -66,12 +67,6 @@ def reference(bounce, case, size, out, spp, frame):
     return rel(cmd)
 
 
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {"relMse": m["relMse"], "flipHdr": m["flipHdr"], "nrmse": m["nrmse"]}
-
-
 def later(rec):
     return rec["frames"][1:] if len(rec["frames"]) > 1 else rec["frames"]
 
@@ -82,10 +77,6 @@ def gpu(rec, scope):
 
 def counter(rec, name):
     return statistics.median(f["counters"].get(name, 0.0) for f in later(rec))
-
-
-def summary(values):
-    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
 
 
 def has_scene(bounce, name):

@@ -13,7 +13,7 @@ and of the no-GI image, the render's wall time, or the one-line refusal of a sce
 not accept. The raw record goes to bench/results/<NAME>-<date>.json (NAME defaults to `fidelity`);
 bench/tables.py turns it into the README's fidelity table.
 """
-import json
+import functools
 import os
 import re
 import subprocess
@@ -23,8 +23,11 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-from cli import option, rel  # noqa: E402
+from cli import compare as compare_metrics, option, rel  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("energy", "relMse", "relRms", "flipLdr", "testMean", "referenceMean"))
 
 # Frames rendered before the image is taken, for techniques that converge or settle over frames
 # (the rest are complete in their first frame). iir maintains its VPL set incrementally from frame 0;
@@ -58,12 +61,6 @@ def list_techniques(bounce):
 
 def scenes(bounce):
     return subprocess.run([bounce, "list", "--scenes", "--names"], check=True, capture_output=True, text=True).stdout.split()
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {k: m[k] for k in ("energy", "relMse", "relRms", "flipLdr", "testMean", "referenceMean")}
 
 
 def render(bounce, scene, technique, size, frames, component, out, start=0):

@@ -14,15 +14,21 @@ Usage:
       --side LABEL=BINARY:COMMIT:TECHNIQUE[:name=value,...] ...   (COMMIT: the one BINARY was built from)
 """
 import argparse
+import functools
 import json
 import os
 import platform
-import statistics
 import subprocess
 import sys
 import tempfile
 import time
 from datetime import datetime, timezone
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from cli import summary as summary_n  # noqa: E402
+
+# min, median, max without the count (bench/cli.py summary).
+summary = functools.partial(summary_n, n=False)
 
 
 def parse_side(text):
@@ -32,10 +38,6 @@ def parse_side(text):
     settings = [s for s in parts[3].split(",") if s] if len(parts) > 3 else []
     return {"label": label, "binary": os.path.realpath(binary), "commit": commit, "technique": technique,
             "settings": settings}
-
-
-def summary(values):
-    return {"min": min(values), "median": statistics.median(values), "max": max(values)}
 
 
 def main():

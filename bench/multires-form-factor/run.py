@@ -13,7 +13,7 @@ gap between the two form factors, not the upsampling or the refinement criteria,
 technique adds. Also each image against the gather with its own form factor (relative RMS).
 The raw record goes to bench/results/multires-form-factor-<date>.json.
 """
-import json
+import functools
 import os
 import subprocess
 import sys
@@ -21,17 +21,14 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-from cli import option, rel  # noqa: E402
+from cli import compare as compare_metrics, option, rel  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("energy", "relMse", "relRms"))
 
 SCENES = ["atrium", "cornell-box", "cornell-box-area"]
 FULL = {"depthThreshold": "0", "normalThreshold": "0"}
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {k: m[k] for k in ("energy", "relMse", "relRms")}
 
 
 def main():

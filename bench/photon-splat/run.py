@@ -22,6 +22,7 @@ repetition. Sections:
   memory       M1: photonBytes per photon, gridBytes at 16^3 .. 256^3 (counters: what is allocated)
 Writes bench/results/photon-splat-<date>.json; bench/tables.py makes the README table.
 """
+import functools
 import json
 import os
 import subprocess
@@ -30,14 +31,12 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
+from cli import compare as compare_metrics  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("relMse", "energy", "flipLdr", "rmsSum8"))
 SIZE = "128x128"
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", test, ref, "--json"], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {k: m[k] for k in ("relMse", "energy", "flipLdr", "rmsSum8")}
 
 
 def splat(bounce, tmp, scene, settings, frames=3):

@@ -11,7 +11,7 @@ visibility samples, the random rotation, the ray weights, the moving patches' si
 progressive propagation after each redistribution; PR beside them. The raw record goes to
 bench/results/radiosity-cross-sampling-<date>.json.
 """
-import json
+import functools
 import os
 import subprocess
 import sys
@@ -19,8 +19,11 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-from cli import rel  # noqa: E402
+from cli import compare as compare_metrics, rel  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("nrmse", "relMse", "energy"))
 
 BASE = ["--scene", "cornell-box-rotating", "--scene-param", "light=large", "--size", "128x128", "--set", "elementSize=0.05"]
 VARIANTS = {"defaults": {}, "crossGrid=8": {"crossGrid": "8"}, "crossGrid=16": {"crossGrid": "16"},
@@ -29,12 +32,6 @@ VARIANTS = {"defaults": {}, "crossGrid=8": {"crossGrid": "8"}, "crossGrid=16": {
             "randomRotation=false": {"randomRotation": "false"}, "crossWeights=formFactor": {"crossWeights": "formFactor"},
             "dynamicElementSize=0.05": {"dynamicElementSize": "0.05"}, "propagate=false": {"propagate": "false"},
             "propagate=false crossGrid=16 backHemicubeSize=64": {"propagate": "false", "crossGrid": "16", "backHemicubeSize": "64"}}
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {k: m[k] for k in ("nrmse", "relMse", "energy")}
 
 
 def render(bounce, technique, frames, start, settings, out):

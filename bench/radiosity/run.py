@@ -26,6 +26,7 @@ first (the first compiles shaders on llvmpipe and, for incremental and cross, ho
 progressive solution; the thesis discards 1-3 warm-up frames too). The raw record goes to
 bench/results/radiosity-<date>.json; bench/tables.py makes the README table from it.
 """
+import functools
 import json
 import os
 import statistics
@@ -35,7 +36,11 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
+from cli import compare as compare_metrics, rel, summary  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("nrmse", "relMse", "flipHdr"))
 
 METHODS = ["radiosity-gather", "radiosity-pr", "radiosity-incremental", "radiosity-cross"]
 # The thesis's four scenes (sec. 5.1) as bounce built-ins; "low quality" is the large-light Cornell
@@ -76,10 +81,6 @@ def settings_for(case, method):
     return out
 
 
-def rel(cmd):
-    return " ".join(os.path.relpath(c, ROOT) if os.path.isabs(c) and c.startswith(ROOT) else c for c in cmd)
-
-
 def render(bounce, case, method, frames, size, extra=None, out_exr=None, start=0):
     with tempfile.TemporaryDirectory() as tmp:
         out = out_exr or os.path.join(tmp, "o.exr")
@@ -103,16 +104,6 @@ def frame_values(rec, key, skip=1):
 def counter(rec, name, skip=1):
     frames = rec["frames"][skip:] if len(rec["frames"]) > skip else rec["frames"]
     return statistics.median(f["counters"].get(name, 0.0) for f in frames)
-
-
-def summary(values):
-    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {"nrmse": m["nrmse"], "relMse": m["relMse"], "flipHdr": m["flipHdr"]}
 
 
 def main():

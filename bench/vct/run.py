@@ -10,16 +10,20 @@ bench/results/vct-<date>.json with the command, git commit, date and machine; be
 it into the README's tables. Absolute times on llvmpipe are indicative only; the ratios are the
 results (thesis Table 4.1 and ch. 5-7 claims, docs/techniques/vct.md).
 """
+import functools
 import json
 import os
-import statistics
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
+from cli import compare as compare_metrics, summary  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("relMse", "flipLdr", "mae"))
 
 
 def run_record(bounce, scene, settings, size, frames, scene_params=None, component="indirect"):
@@ -53,16 +57,6 @@ def interleaved(bounce, cases, reps, frames, size):
             runs[label].append(rec)
             cmds[label] = " ".join(os.path.relpath(c, ROOT) if c == bounce else c for c in cmd)
     return runs, cmds
-
-
-def summary(values):
-    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", test, ref, "--json"], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {"relMse": m["relMse"], "flipLdr": m["flipLdr"], "mae": m["mae"]}
 
 
 def main():

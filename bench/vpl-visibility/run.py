@@ -15,6 +15,7 @@ with another seed (the reference's own noise). The images are deterministic, so 
 every repetition (recorded per repetition all the same). The raw record goes to
 bench/results/vpl-visibility-<date>.json; bench/tables.py makes the README section from it.
 """
+import functools
 import json
 import os
 import statistics
@@ -24,17 +25,17 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
+from cli import compare as compare_metrics, rel, summary  # noqa: E402
 from record import new_record, write_record  # noqa: E402
+
+# The metrics of `bounce compare` this record keeps (bench/cli.py compare).
+compare = functools.partial(compare_metrics, keys=("relMse", "rmse"))
 
 TECHNIQUES = ["rsm", "isr", "hisr"]
 SCENE = "furnished-room"
 # Reference samples per pixel: at 128^2 the one-bounce image's per-pixel noise at 2048 spp is a few per
 # cent; its relMSE against a second seed is recorded beside the techniques' (the noise floor).
 REFERENCE_SPP = 2048
-
-
-def rel(cmd):
-    return " ".join(os.path.relpath(c, ROOT) if os.path.isabs(c) and c.startswith(ROOT) else c for c in cmd)
 
 
 def option(args, name, default):
@@ -48,16 +49,6 @@ def option(args, name, default):
 def later_frames(record):
     # The frames after the first (the first compiles shaders on llvmpipe), or all of a one-frame run.
     return record["frames"][1:] or record["frames"]
-
-
-def summary(values):
-    return {"min": min(values), "median": statistics.median(values), "max": max(values), "n": len(values)}
-
-
-def compare(bounce, test, ref):
-    out = subprocess.run([bounce, "compare", "--json", test, ref], check=True, capture_output=True, text=True).stdout
-    m = json.loads(out)["metrics"]
-    return {"relMse": m["relMse"], "rmse": m["rmse"]}
 
 
 def main():

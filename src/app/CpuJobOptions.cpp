@@ -6,7 +6,10 @@
 #include "core/Resources.h"
 #include "metrics/NoiseFloor.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdarg>
+#include <cstdio>
 #include <cmath>
 
 namespace bounce {
@@ -134,6 +137,26 @@ void addNoiseFloor(nlohmann::ordered_json& record, const PathTracerResult& resul
     auto floor = referenceNoiseFloor(result.radiance, result.variance);
     record["noise"]["floor"] = floor ? nlohmann::ordered_json(noiseFloorJson(*floor))
                                      : nlohmann::ordered_json({{"error", floor.error().message}});
+}
+
+void ProgressLine::draw(const char* label, double fraction, const char* detailFormat, ...) {
+    if (!m_enabled) return;
+    // Width of the bar in characters.
+    constexpr int kBarWidth = 30;
+    const int filled = static_cast<int>(fraction * kBarWidth);
+    std::fprintf(stderr, "\r%s [%s%s] %3d%%", label, std::string(static_cast<size_t>(filled), '#').c_str(),
+                 std::string(static_cast<size_t>(kBarWidth - filled), '-').c_str(), static_cast<int>(100.0 * fraction));
+    va_list detail;
+    va_start(detail, detailFormat);
+    std::vfprintf(stderr, detailFormat, detail);
+    va_end(detail);
+    std::fflush(stderr);
+    m_drawn = true;
+}
+
+void ProgressLine::finish() {
+    if (m_drawn) std::fputc('\n', stderr);
+    m_drawn = false;
 }
 
 }  // namespace bounce

@@ -2,6 +2,8 @@
 // The options `bounce reference` and `bounce photon-map` share (scene, size, light-transport scope,
 // time limit, seed, threads, frame, outputs, tone mapping, progress): declared once, checked once
 // before any work. Each command adds its own (--spp, --photons, ...) and fills its job from these.
+#include "app/Cli.h"
+#include "app/Options.h"
 #include "core/Error.h"
 #include "core/ToneMap.h"
 #include "reference/PhotonMapJob.h"
@@ -10,6 +12,8 @@
 
 #include <CLI/CLI.hpp>
 #include <glm/vec2.hpp>
+
+#include <unistd.h>
 
 #include <string>
 #include <vector>
@@ -76,5 +80,41 @@ Expected<PhotonMapJob> photonMapJobFromArgs(const PhotonMapArgs& args);
 // The reference's noise floors (metrics/NoiseFloor.h, at compare's default display transforms) in its
 // run record's "noise": {"floor": {"relMse": ..., ...}}; what `bounce compare` reads beside it.
 void addNoiseFloor(nlohmann::ordered_json& record, const PathTracerResult& result);
+
+// One progress line on stderr, redrawn in place while a CPU job runs:
+// "LABEL [#####---------] NN%DETAIL", DETAIL printf-formatted. finish() ends the line.
+class ProgressLine {
+public:
+    explicit ProgressLine(bool enabled) : m_enabled(enabled) {}
+    ProgressLine(const ProgressLine&) = delete;
+    ProgressLine& operator=(const ProgressLine&) = delete;
+    ~ProgressLine() { finish(); }
+    void draw(const char* label, double fraction, const char* detailFormat, ...) __attribute__((format(printf, 4, 5)));
+    void finish();
+
+private:
+    bool m_enabled;
+    bool m_drawn = false;
+};
+
+// The body `bounce reference` and `bounce photon-map` share: the checked job (its flag errors end the
+// command before the scene is loaded), the scene loaded and its one-sided surfaces warned about, the
+// job run by run(scene, job, progressLine) with a progress line (--progress, or stderr a terminal),
+// and on success summary(scene, job, result), the command's one-line summary on stdout.
+template <class Job, class Run, class Summary>
+int runCpuJobCommand(const char* command, const CpuJobArgs& args, const Expected<Job>& job, Run run, Summary summary) {
+    const auto fail = [&](const std::string& message) { return failCommand(command, message); };
+    // Every flag is checked before the scene is loaded, so a typo costs nothing.
+    if (!job) return fail(job.error().message);
+    auto scene = loadScene(args.scene, job->sceneParams);
+    if (!scene) return fail(scene.error().message);
+    warnOneSidedSurfaces(*scene, {job->settings.width, job->settings.height}, args.frame);
+    ProgressLine progress(args.progress || ::isatty(STDERR_FILENO) != 0);
+    auto result = run(*scene, *job, progress);
+    progress.finish();
+    if (!result) return fail(result.error().message);
+    summary(*scene, *job, *result);
+    return 0;
+}
 
 }  // namespace bounce

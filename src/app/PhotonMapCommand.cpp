@@ -25,60 +25,29 @@ namespace bounce {
 namespace {
 
 constexpr const char* kCommand = "photon-map";
-constexpr int kBarWidth = 30;
-
-class ProgressBar {
-public:
-    explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
-    ~ProgressBar() { finish(); }
-
-    void update(const PhotonMapProgress& p) {
-        if (!m_enabled) return;
-        const double fraction = static_cast<double>(p.done) / static_cast<double>(std::max<uint64_t>(1, p.target));
-        const int filled = static_cast<int>(fraction * kBarWidth);
-        const bool tracing = p.phase == PhotonMapProgress::Phase::Tracing;
-        std::fprintf(stderr, "\rphoton-map %s [%s%s] %3d%%  %llu/%llu %s  %.1f s   ", tracing ? "tracing" : "gathered",
-                     std::string(static_cast<size_t>(filled), '#').c_str(),
-                     std::string(static_cast<size_t>(kBarWidth - filled), '-').c_str(), static_cast<int>(100.0 * fraction),
-                     static_cast<unsigned long long>(p.done), static_cast<unsigned long long>(p.target),
-                     tracing ? "photons" : "rows", p.elapsedSeconds);
-        std::fflush(stderr);
-        m_drawn = true;
-    }
-    void finish() {
-        if (m_drawn) std::fputc('\n', stderr);
-        m_drawn = false;
-    }
-
-private:
-    bool m_enabled;
-    bool m_drawn = false;
-};
 
 int runPhotonMap(const PhotonMapArgs& args) {
-    const auto fail = [](const std::string& message) { return failCommand(kCommand, message); };
-    auto checked = photonMapJobFromArgs(args);
-    if (!checked) return fail(checked.error().message);
-    const PhotonMapJob& job = *checked;
-    const PhotonMapSettings& s = job.settings;
-
-    auto scene = loadScene(args.scene, job.sceneParams);
-    if (!scene) return fail(scene.error().message);
-    warnOneSidedSurfaces(*scene, {s.width, s.height}, args.frame);
-
-    ProgressBar bar(args.progress || ::isatty(STDERR_FILENO) != 0);
-    auto result = runPhotonMapJob(*scene, job, [&](const PhotonMapProgress& p) { bar.update(p); });
-    bar.finish();
-    if (!result) return fail(result.error().message);
-    const PhotonMapResult& r = *result;
-    // The one-line summary goes to stdout whatever --log-level says (docs/reference.md shows it).
-    fmt::print("photon-map: {} {}x{}, {} photons emitted{}, {} stored ({:.1f} MB), k {}: trace {:.1f} s, tree {:.2f} s, "
-                 "gather {:.1f} s; mean radius {:.4f} m; wrote {}{}\n",
-                 scene->name, s.width, s.height, r.photonsEmitted,
-                 r.stoppedByTimeLimit ? fmt::format(" (time limit; {} asked)", args.photons) : std::string(),
-                 r.photonsStored, static_cast<double>(r.mapBytes) * 1e-6, s.k, r.traceSeconds, r.treeSeconds,
-                 r.gatherSeconds, r.meanGatherRadius, args.out, args.stats.empty() ? std::string() : " and " + args.stats);
-    return 0;
+    return runCpuJobCommand(
+        kCommand, args, photonMapJobFromArgs(args),
+        [&](const Scene& scene, const PhotonMapJob& job, ProgressLine& line) {
+            return runPhotonMapJob(scene, job, [&](const PhotonMapProgress& p) {
+                const double fraction = static_cast<double>(p.done) / static_cast<double>(std::max<uint64_t>(1, p.target));
+                const bool tracing = p.phase == PhotonMapProgress::Phase::Tracing;
+                line.draw(tracing ? "photon-map tracing" : "photon-map gathered", fraction, "  %llu/%llu %s  %.1f s   ",
+                          static_cast<unsigned long long>(p.done), static_cast<unsigned long long>(p.target),
+                          tracing ? "photons" : "rows", p.elapsedSeconds);
+            });
+        },
+        [&](const Scene& scene, const PhotonMapJob& job, const PhotonMapResult& r) {
+            const PhotonMapSettings& s = job.settings;
+            // The one-line summary goes to stdout whatever --log-level says (docs/reference.md shows it).
+            fmt::print("photon-map: {} {}x{}, {} photons emitted{}, {} stored ({:.1f} MB), k {}: trace {:.1f} s, tree {:.2f} s, "
+                       "gather {:.1f} s; mean radius {:.4f} m; wrote {}{}\n",
+                       scene.name, s.width, s.height, r.photonsEmitted,
+                       r.stoppedByTimeLimit ? fmt::format(" (time limit; {} asked)", args.photons) : std::string(),
+                       r.photonsStored, static_cast<double>(r.mapBytes) * 1e-6, s.k, r.traceSeconds, r.treeSeconds,
+                       r.gatherSeconds, r.meanGatherRadius, args.out, args.stats.empty() ? std::string() : " and " + args.stats);
+        });
 }
 
 }  // namespace

@@ -24,67 +24,29 @@ namespace bounce {
 namespace {
 
 constexpr const char* kCommand = "reference";
-// Width of the progress bar in characters.
-constexpr int kBarWidth = 30;
-
-// One line on stderr, redrawn after every pass.
-class ProgressBar {
-public:
-    explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
-    ~ProgressBar() { finish(); }
-
-    void update(const RenderProgress& p, double timeLimit) {
-        if (!m_enabled) return;
-        const double fraction = static_cast<double>(p.samplesDone) / std::max(1u, p.samplesTarget);
-        double eta = fraction > 0.0 ? p.elapsedSeconds * (1.0 - fraction) / fraction : 0.0;
-        if (timeLimit > 0.0) eta = std::min(eta, std::max(0.0, timeLimit - p.elapsedSeconds));
-        const int filled = static_cast<int>(fraction * kBarWidth);
-        std::fprintf(stderr, "\rreference [%s%s] %3d%%  %u/%u spp  %.1f s  ETA %.0f s   ",
-                     std::string(static_cast<size_t>(filled), '#').c_str(),
-                     std::string(static_cast<size_t>(kBarWidth - filled), '-').c_str(),
-                     static_cast<int>(100.0 * fraction), p.samplesDone, p.samplesTarget, p.elapsedSeconds, eta);
-        std::fflush(stderr);
-        m_drawn = true;
-    }
-
-    void finish() {
-        if (m_drawn) std::fputc('\n', stderr);
-        m_drawn = false;
-    }
-
-private:
-    bool m_enabled;
-    bool m_drawn = false;
-};
 
 int runReference(const ReferenceArgs& args) {
-    const auto fail = [](const std::string& message) { return failCommand(kCommand, message); };
-
-    // Every flag is checked before the scene is loaded, so a typo costs nothing.
-    auto checked = referenceJobFromArgs(args);
-    if (!checked) return fail(checked.error().message);
-    const ReferenceJob& job = *checked;
-    const glm::ivec2 size{job.settings.width, job.settings.height};
-
-    auto scene = loadScene(args.scene, job.sceneParams);
-    if (!scene) return fail(scene.error().message);
-    warnOneSidedSurfaces(*scene, size, args.frame);
-
-    ProgressBar bar(args.progress || ::isatty(STDERR_FILENO) != 0);
-    auto result = runReferenceJob(*scene, job, [&](const RenderProgress& p) { bar.update(p, args.timeLimit); });
-    bar.finish();
-    if (!result) return fail(result.error().message);
-
-    const PathTracerResult& r = *result;
-    // The one-line summary goes to stdout whatever --log-level says (docs/reference.md shows it).
-    fmt::print("reference: {} {}x{}, {} spp{} in {:.1f} s ({:.2f} M paths/s, {:.1f} M rays/s); noise {:.2f}% per "
-                 "pixel, {:.3f}% image mean; wrote {}{}\n",
-                 scene->name, job.settings.width, job.settings.height, r.samplesPerPixel,
-                 r.stoppedByTimeLimit ? fmt::format(" (time limit; {} asked)", args.spp) : std::string(),
-                 r.renderSeconds, r.pathsPerSecond() * 1e-6, r.raysPerSecond() * 1e-6,
-                 100.0 * r.noise.meanPixelRelativeError, 100.0 * r.noise.imageRelativeError, args.out,
-                 args.stats.empty() ? std::string() : " and " + args.stats);
-    return 0;
+    return runCpuJobCommand(
+        kCommand, args, referenceJobFromArgs(args),
+        [&](const Scene& scene, const ReferenceJob& job, ProgressLine& line) {
+            return runReferenceJob(scene, job, [&](const RenderProgress& p) {
+                const double fraction = static_cast<double>(p.samplesDone) / std::max(1u, p.samplesTarget);
+                double eta = fraction > 0.0 ? p.elapsedSeconds * (1.0 - fraction) / fraction : 0.0;
+                if (args.timeLimit > 0.0) eta = std::min(eta, std::max(0.0, args.timeLimit - p.elapsedSeconds));
+                line.draw(kCommand, fraction, "  %u/%u spp  %.1f s  ETA %.0f s   ", p.samplesDone, p.samplesTarget,
+                          p.elapsedSeconds, eta);
+            });
+        },
+        [&](const Scene& scene, const ReferenceJob& job, const PathTracerResult& r) {
+            // The one-line summary goes to stdout whatever --log-level says (docs/reference.md shows it).
+            fmt::print("reference: {} {}x{}, {} spp{} in {:.1f} s ({:.2f} M paths/s, {:.1f} M rays/s); noise {:.2f}% per "
+                       "pixel, {:.3f}% image mean; wrote {}{}\n",
+                       scene.name, job.settings.width, job.settings.height, r.samplesPerPixel,
+                       r.stoppedByTimeLimit ? fmt::format(" (time limit; {} asked)", args.spp) : std::string(),
+                       r.renderSeconds, r.pathsPerSecond() * 1e-6, r.raysPerSecond() * 1e-6,
+                       100.0 * r.noise.meanPixelRelativeError, 100.0 * r.noise.imageRelativeError, args.out,
+                       args.stats.empty() ? std::string() : " and " + args.stats);
+        });
 }
 
 }  // namespace

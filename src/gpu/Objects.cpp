@@ -235,6 +235,20 @@ Texture Texture::create2D(std::string_view name, int width, int height, GLenum f
     return create(name, d);
 }
 
+Texture Texture::create2DArray(std::string_view name, int width, int height, int layers, GLenum format, int levels,
+                               GLenum filter) {
+    TextureDesc d;
+    d.target = GL_TEXTURE_2D_ARRAY;
+    d.format = format;
+    d.width = width;
+    d.height = height;
+    d.depth = layers;
+    d.levels = levels;
+    d.minFilter = levels == 1 ? filter : filter == GL_LINEAR ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
+    d.magFilter = filter;
+    return create(name, d);
+}
+
 void Texture::bindImage(GLuint unit, GLenum access, int level, bool layered, int layer) const {
     glBindImageTexture(unit, id(), level, layered ? GL_TRUE : GL_FALSE, layer, access, m_desc.format);
 }

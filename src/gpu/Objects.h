@@ -64,6 +64,10 @@ public:
     Texture() = default;
     static Texture create(std::string_view name, const TextureDesc& desc);
     static Texture create2D(std::string_view name, int width, int height, GLenum format, int levels = 1);
+    // A GL_TEXTURE_2D_ARRAY of `layers` layers sampled with `filter` (magnification; minification too,
+    // with the nearest mip level when levels > 1).
+    static Texture create2DArray(std::string_view name, int width, int height, int layers, GLenum format, int levels = 1,
+                                 GLenum filter = GL_NEAREST);
     // A buffer texture (samplerBuffer) over all of `buffer`, read as `format` texels: its storage is the
     // buffer's (counted there), so the buffer must outlive the view.
     static Texture createBufferView(std::string_view name, const Buffer& buffer, GLenum format);

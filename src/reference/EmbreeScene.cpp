@@ -1,6 +1,8 @@
 #include "reference/EmbreeScene.h"
 
+#include "core/ImageIo.h"
 #include "core/Log.h"
+#include "scene/AreaTexture.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -96,6 +98,22 @@ Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, 
 }
 
 }  // namespace
+
+Expected<void> checkTracedTextures(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        for (const int index : {m.baseColorTexture, m.emissionTexture}) {
+            if (index < 0) continue;
+            if (static_cast<size_t>(index) >= scene.textures.size())
+                return makeError("material '{}': texture index {} out of range ({} textures)", m.name, index,
+                                 scene.textures.size());
+            const TextureImage& t = scene.textures[static_cast<size_t>(index)];
+            if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
+            BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
+        }
+    for (const Light& light : scene.lights)
+        BOUNCE_TRY_VOID(checkAreaTexture(scene, light, "light '" + light.name + "'"));
+    return {};
+}
 
 Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOptions& options) {
     EmbreeScene out;

@@ -86,6 +86,11 @@ struct SurfacePoint {
     glm::vec2 uv;
 };
 
+// The textures the CPU renderers (PathTracer, PhotonMapper) read, checked before they build: every
+// material texture index in range with a non-empty, finite image, and every light's area texture valid
+// (checkAreaTexture).
+Expected<void> checkTracedTextures(const Scene& scene);
+
 class EmbreeScene {
 public:
     static Expected<EmbreeScene> build(const Scene& scene, const EmbreeSceneOptions& options);

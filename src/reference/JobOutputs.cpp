@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore_config.h>
 #include <fmt/format.h>
+#include <tbb/task_arena.h>
 #include <tbb/version.h>
 
 namespace bounce {
@@ -54,6 +55,18 @@ nlohmann::ordered_json jobOutputRecord(const std::filesystem::path& output, cons
 
 nlohmann::ordered_json jobLibraryVersions() {
     return {{"embree", fmt::format("{}.{}.{}", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH)}, {"tbb", TBB_VERSION_STRING}};
+}
+
+nlohmann::ordered_json jobScopeRecord(const Scene& scene, int bounces, bool unbounded, bool indirectOnly, bool diffuseOnly,
+                                      uint64_t seed, double timeLimitSeconds, int threads, uint32_t frame) {
+    return {{"bounces", unbounded ? nlohmann::ordered_json("unbounded") : nlohmann::ordered_json(bounces)},
+            {"indirectOnly", indirectOnly},
+            {"diffuseOnly", diffuseOnly},
+            {"seed", seed},
+            {"timeLimitSeconds", timeLimitSeconds},
+            {"threads", threads > 0 ? threads : tbb::info::default_concurrency()},
+            {"frame", frame},
+            {"timeSeconds", scene.timeOfFrame(frame)}};
 }
 
 }  // namespace bounce

@@ -407,18 +407,7 @@ Expected<PhotonMapper> PhotonMapper::create(const Scene& scene, const PhotonMapS
     if (settings.threads < 0) return makeError("threads {}: must be 0 (all) or more", settings.threads);
     if (!(settings.timeLimitSeconds >= 0.0) || !std::isfinite(settings.timeLimitSeconds))
         return makeError("time limit {}: must be a finite number of seconds >= 0", settings.timeLimitSeconds);
-    for (const Material& m : scene.materials)
-        for (const int index : {m.baseColorTexture, m.emissionTexture}) {
-            if (index < 0) continue;
-            if (static_cast<size_t>(index) >= scene.textures.size())
-                return makeError("material '{}': texture index {} out of range ({} textures)", m.name, index,
-                                 scene.textures.size());
-            const TextureImage& t = scene.textures[static_cast<size_t>(index)];
-            if (t.image.empty()) return makeError("texture '{}' (material '{}'): empty image", t.name, m.name);
-            BOUNCE_TRY_VOID(checkFinite(t.image, "texture '" + t.name + "'"));
-        }
-    for (const Light& light : scene.lights)
-        BOUNCE_TRY_VOID(checkAreaTexture(scene, light, "light '" + light.name + "'"));
+    BOUNCE_TRY_VOID(checkTracedTextures(scene));
     EmbreeSceneOptions options;
     options.time = scene.timeOfFrame(settings.frame);
     options.filter = GeometryFilter::All;

@@ -3,47 +3,31 @@
 #include "reference/JobOutputs.h"
 
 #include <nanoflann.hpp>
-#include <tbb/task_arena.h>
 
 namespace bounce {
 
 Expected<PhotonMapResult> runPhotonMapJob(const Scene& scene, const PhotonMapJob& job,
                                           const PhotonMapProgressCallback& progress) {
-    if (job.output.empty()) {  // nothing written: the caller keeps the result (`import bounce`)
-        if (!job.stats.empty()) return makeError("a run record needs an output image");
-        BOUNCE_TRY(const PhotonMapper mapper, PhotonMapper::create(scene, job.settings));
-        return mapper.render(progress);
-    }
-    BOUNCE_TRY(const ImageFormat format, checkJobOutputs(job.output, job.stats));
-    BOUNCE_TRY(const PhotonMapper mapper, PhotonMapper::create(scene, job.settings));
-    PhotonMapResult result = mapper.render(progress);
-    BOUNCE_TRY_VOID(writeJobOutputs(job.output, job.stats, format, result.radiance, job.toneMap,
-                                    job.stats.empty() ? nlohmann::ordered_json() : photonMapRunRecord(scene, job, result)));
-    return result;
+    return runJobWithOutputs<PhotonMapResult>(
+        job.output, job.stats, {}, job.toneMap, "a run record needs an output image",
+        [&]() -> Expected<PhotonMapResult> {
+            BOUNCE_TRY(const PhotonMapper mapper, PhotonMapper::create(scene, job.settings));
+            return mapper.render(progress);
+        },
+        [&](const PhotonMapResult& result) { return photonMapRunRecord(scene, job, result); },
+        [](const PhotonMapResult&) -> const Image* { return nullptr; });
 }
 
 nlohmann::ordered_json photonMapRunRecord(const Scene& scene, const PhotonMapJob& job, const PhotonMapResult& r) {
     const PhotonMapSettings& s = job.settings;
-    const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
     const double render = r.renderSeconds();
+    nlohmann::ordered_json settings = {{"width", s.width}, {"height", s.height}, {"photons", s.photons},
+                                       {"k", s.k},         {"maxRadius", s.maxRadius}, {"spp", s.samplesPerPixel}};
+    settings.update(jobScopeRecord(scene, s));
     nlohmann::ordered_json record = {
         {"kind", "photon-map"},
         {"scene", jobSceneRecord(scene, job.scene, job.sceneParams)},
-        {"settings",
-         {{"width", s.width},
-          {"height", s.height},
-          {"photons", s.photons},
-          {"k", s.k},
-          {"maxRadius", s.maxRadius},
-          {"spp", s.samplesPerPixel},
-          {"bounces", s.bounces == PhotonMapSettings::kUnbounded ? nlohmann::ordered_json("unbounded") : nlohmann::ordered_json(s.bounces)},
-          {"indirectOnly", s.indirectOnly},
-          {"diffuseOnly", s.diffuseOnly},
-          {"seed", s.seed},
-          {"timeLimitSeconds", s.timeLimitSeconds},
-          {"threads", threads},
-          {"frame", s.frame},
-          {"timeSeconds", scene.timeOfFrame(s.frame)}}},
+        {"settings", settings},
         {"output", jobOutputRecord(job.output, job.toneMap)},
         {"result",
          {{"photonsEmitted", r.photonsEmitted},

@@ -4,48 +4,33 @@
 
 #include "reference/JobOutputs.h"
 
-#include <tbb/task_arena.h>
 
 namespace bounce {
 
 Expected<PathTracerResult> runReferenceJob(const Scene& scene, const ReferenceJob& job,
                                            const ProgressCallback& progress) {
-    if (job.output.empty()) {
-        if (!job.stats.empty() || !job.variance.empty()) return makeError("a run record or variance image needs an output image");
-        BOUNCE_TRY(const PathTracer tracer, PathTracer::create(scene, job.settings));
-        return tracer.render(progress);
-    }
-    BOUNCE_TRY(const ImageFormat format, checkJobOutputs(job.output, job.stats, job.variance));
-    BOUNCE_TRY(const PathTracer tracer, PathTracer::create(scene, job.settings));
-    PathTracerResult result = tracer.render(progress);
-    nlohmann::ordered_json record;
-    if (!job.stats.empty()) {
-        record = referenceRunRecord(scene, job, result);
-        if (job.amendRecord) job.amendRecord(record, result);
-    }
-    BOUNCE_TRY_VOID(writeJobOutputs(job.output, job.stats, format, result.radiance, job.toneMap, record, job.variance,
-                                    &result.variance));
-    return result;
+    return runJobWithOutputs<PathTracerResult>(
+        job.output, job.stats, job.variance, job.toneMap, "a run record or variance image needs an output image",
+        [&]() -> Expected<PathTracerResult> {
+            BOUNCE_TRY(const PathTracer tracer, PathTracer::create(scene, job.settings));
+            return tracer.render(progress);
+        },
+        [&](const PathTracerResult& result) {
+            nlohmann::ordered_json record = referenceRunRecord(scene, job, result);
+            if (job.amendRecord) job.amendRecord(record, result);
+            return record;
+        },
+        [](const PathTracerResult& result) { return &result.variance; });
 }
 
 nlohmann::ordered_json referenceRunRecord(const Scene& scene, const ReferenceJob& job, const PathTracerResult& result) {
     const PathTracerSettings& s = job.settings;
-    const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
+    nlohmann::ordered_json settings = {{"width", s.width}, {"height", s.height}, {"spp", s.samplesPerPixel}};
+    settings.update(jobScopeRecord(scene, s));
     nlohmann::ordered_json record = {
         {"kind", "reference"},
         {"scene", jobSceneRecord(scene, job.scene, job.sceneParams)},
-        {"settings",
-         {{"width", s.width},
-          {"height", s.height},
-          {"spp", s.samplesPerPixel},
-          {"bounces", s.bounces == PathTracerSettings::kUnbounded ? nlohmann::ordered_json("unbounded") : nlohmann::ordered_json(s.bounces)},
-          {"indirectOnly", s.indirectOnly},
-          {"diffuseOnly", s.diffuseOnly},
-          {"seed", s.seed},
-          {"timeLimitSeconds", s.timeLimitSeconds},
-          {"threads", threads},
-          {"frame", s.frame},
-          {"timeSeconds", scene.timeOfFrame(s.frame)}}},
+        {"settings", settings},
         {"output", jobOutputRecord(job.output, job.toneMap)},
         {"result",
          {{"samplesPerPixel", result.samplesPerPixel},

@@ -31,6 +31,19 @@ View cubeFaceView(glm::vec3 eye, int face, float nearPlane, float farPlane, int 
     return v;
 }
 
+void beginDepthTestedPass(int clipDistances) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    for (int k = 0; k < clipDistances; ++k) glEnable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+}
+
+void endDepthTestedPass(int clipDistances) {
+    for (int k = 0; k < clipDistances; ++k) glDisable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+}
+
 SceneDrawer::SceneDrawer(const SceneGpu& scene)
     : m_scene(&scene), m_viewUbo(gl::Buffer::create("scene.view", sizeof(gpu::ViewUniforms))) {}
 

@@ -22,6 +22,12 @@ View cameraView(const Camera& camera, glm::ivec2 viewport);
 // The +X,-X,+Y,-Y,+Z,-Z faces of a cube map centred at `eye` (90-degree frusta, GL cube conventions).
 View cubeFaceView(glm::vec3 eye, int face, float nearPlane, float farPlane, int size);
 
+// The GL state of a depth-tested scene pass into the bound framebuffer: depth test GL_LESS with depth
+// writes, both faces drawn, no blending, and gl_ClipDistance[0 .. clipDistances-1] enabled (the
+// paraboloid maps' hemisphere, the hemicubes' near side). endDepthTestedPass disables the clip planes.
+void beginDepthTestedPass(int clipDistances = 0);
+void endDepthTestedPass(int clipDistances = 0);
+
 class SceneDrawer {
 public:
     explicit SceneDrawer(const SceneGpu& scene);

@@ -69,6 +69,19 @@ int alParity(ivec2 c, int subsets) { return subsets == 4 ? (c.x & 1) + 2 * (c.y 
 // cells of the subset's parity.
 int alWindowRadius(int subsets) { return subsets == 4 ? 2 : 1; }
 
+// The one scan of such regions (gather_diffuse.frag, gather_specular.frag, resolve.comp): offset i of
+// the (2r + 1)^2 offsets in [-r, r]^2 around c, rows (dy) outer and columns (dx) inner, as
+// `for (int i = 0; i < alRegionCells(r); ++i) { ivec2 q; if (!alRegionCell(c, r, size, i, q)) continue; ... }`.
+// alRegionCell is false for a cell outside [0, size); alSubsetCell also for one not of parity s.
+int alRegionCells(int r) { return (2 * r + 1) * (2 * r + 1); }
+bool alRegionCell(ivec2 c, int r, ivec2 size, int i, out ivec2 q) {
+    q = c + ivec2(i % (2 * r + 1), i / (2 * r + 1)) - ivec2(r);
+    return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+}
+bool alSubsetCell(ivec2 c, int r, ivec2 size, int subsets, int s, int i, out ivec2 q) {
+    return alRegionCell(c, r, size, i, q) && alParity(q, subsets) == s;
+}
+
 // A subset's cells of a region must number at least this many before they can agree or disagree.
 const int AL_MIN_REGION_SAMPLES = 2;
 

@@ -67,17 +67,15 @@ void main() {
     if (visibility == AL_VIS_INCREMENTAL && u_level < u_coarsest) {
         ivec2 p = min(cell / 2, u_parentSize - 1);
         int r = alWindowRadius(subsets);
-        for (int dy = -r; dy <= r; ++dy)
-            for (int dx = -r; dx <= r; ++dx) {
-                ivec2 q = p + ivec2(dx, dy);
-                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_parentSize))) continue;
-                if (alParity(q, subsets) != s) continue;
-                if ((texelFetch(s_flags, u_parentOrigin + q, 0).r & AL_CELL_TREE) == 0u) continue;
-                uvec4 b = imageLoad(i_bits, ivec3(u_parentOrigin + q, u_batch));
-                anyVisible |= b;
-                allVisible &= b;
-                ++samples;
-            }
+        for (int i = 0; i < alRegionCells(r); ++i) {
+            ivec2 q;
+            if (!alSubsetCell(p, r, u_parentSize, subsets, s, i, q)) continue;
+            if ((texelFetch(s_flags, u_parentOrigin + q, 0).r & AL_CELL_TREE) == 0u) continue;
+            uvec4 b = imageLoad(i_bits, ivec3(u_parentOrigin + q, u_batch));
+            anyVisible |= b;
+            allVisible &= b;
+            ++samples;
+        }
     }
     uvec4 agree = samples >= AL_MIN_REGION_SAMPLES ? ~(anyVisible ^ allVisible) : uvec4(0u);
 

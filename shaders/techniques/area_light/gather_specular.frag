@@ -50,17 +50,15 @@ float varianceVisibility(ivec2 cell, int i, int k) {
     int s = k % 4, j = k / 4;
     vec2 m = vec2(0.0);
     float count = 0.0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            ivec2 q = cell + ivec2(dx, dy);
-            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_levelSize))) continue;
-            if ((q.x & 1) + 2 * (q.y & 1) != s) continue;
-            vec4 t = imageLoad(i_moments, ivec3(u_levelOrigin + q, 3 * i + j / 2));
-            vec2 d = (j % 2) == 0 ? t.xy : t.zw;
-            if (d.x < 0.0) continue;  // not sent (off the light, or a broad lobe there)
-            m += d;
-            count += 1.0;
-        }
+    for (int c = 0; c < alRegionCells(1); ++c) {
+        ivec2 q;
+        if (!alSubsetCell(cell, 1, u_levelSize, 4, s, c, q)) continue;
+        vec4 t = imageLoad(i_moments, ivec3(u_levelOrigin + q, 3 * i + j / 2));
+        vec2 d = (j % 2) == 0 ? t.xy : t.zw;
+        if (d.x < 0.0) continue;  // not sent (off the light, or a broad lobe there)
+        m += d;
+        count += 1.0;
+    }
     if (count == 0.0) return 1.0;
     m /= count;
     float mu = m.x, variance = max(m.y - mu * mu, 1e-6);

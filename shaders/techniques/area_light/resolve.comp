@@ -43,19 +43,18 @@ void main() {
     if (u_resolve && (flags & AL_CELL_RENDERED) != 0u) {
         vec3 sum[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
         float count[4] = float[4](0.0, 0.0, 0.0, 0.0);
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                ivec2 q = c + ivec2(dx, dy);
-                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_size))) continue;
-                if ((imageLoad(i_flags, u_levelOrigin + q).r & AL_CELL_RENDERED) == 0u) continue;
-                vec4 gq = texelFetch(s_geometry, ivec3(q, 0), u_level);
-                vec3 xq = gq.xyz / gq.w;
-                vec3 nq = normalize(texelFetch(s_normal, ivec3(q, 0), u_level).xyz + vec3(0.0, 0.0, 1e-12));
-                if (dot(n, nq) < u_pass.geometry.x || abs(dot(xq - x, n)) > tolerance) continue;
-                int s = alParity(q, 4);
-                sum[s] += texelFetch(s_subsets, u_levelOrigin + q, 0).rgb;
-                count[s] += 1.0;
-            }
+        for (int i = 0; i < alRegionCells(1); ++i) {
+            ivec2 q;
+            if (!alRegionCell(c, 1, u_size, i, q)) continue;
+            if ((imageLoad(i_flags, u_levelOrigin + q).r & AL_CELL_RENDERED) == 0u) continue;
+            vec4 gq = texelFetch(s_geometry, ivec3(q, 0), u_level);
+            vec3 xq = gq.xyz / gq.w;
+            vec3 nq = normalize(texelFetch(s_normal, ivec3(q, 0), u_level).xyz + vec3(0.0, 0.0, 1e-12));
+            if (dot(n, nq) < u_pass.geometry.x || abs(dot(xq - x, n)) > tolerance) continue;
+            int s = alParity(q, 4);
+            sum[s] += texelFetch(s_subsets, u_levelOrigin + q, 0).rgb;
+            count[s] += 1.0;
+        }
         vec3 e = vec3(0.0);
         float found = 0.0;
         for (int s = 0; s < 4; ++s)
@@ -81,17 +80,16 @@ void main() {
                 allBits[s] = uvec4(0xFFFFFFFFu);
                 samples[s] = 0;
             }
-            for (int dy = -r; dy <= r; ++dy)
-                for (int dx = -r; dx <= r; ++dx) {
-                    ivec2 q = c + ivec2(dx, dy);
-                    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_size))) continue;
-                    if ((imageLoad(i_flags, u_levelOrigin + q).r & AL_CELL_TREE) == 0u) continue;
-                    int s = alParity(q, subsets);
-                    uvec4 b = imageLoad(i_bits, ivec3(u_levelOrigin + q, layer));
-                    anyBits[s] |= b;
-                    allBits[s] &= b;
-                    samples[s] += 1;
-                }
+            for (int i = 0; i < alRegionCells(r); ++i) {
+                ivec2 q;
+                if (!alRegionCell(c, r, u_size, i, q)) continue;
+                if ((imageLoad(i_flags, u_levelOrigin + q).r & AL_CELL_TREE) == 0u) continue;
+                int s = alParity(q, subsets);
+                uvec4 b = imageLoad(i_bits, ivec3(u_levelOrigin + q, layer));
+                anyBits[s] |= b;
+                allBits[s] &= b;
+                samples[s] += 1;
+            }
             uint layerVpls = uint(min(perCell - SV_BITS_PER_LAYER * layer, SV_BITS_PER_LAYER));
             for (int s = 0; s < subsets; ++s) {
                 if (samples[s] < AL_MIN_REGION_SAMPLES) continue;

@@ -33,7 +33,7 @@ void main() {
     vec3 R = reflect(-normalize(u_frame.eyePosition.xyz - x), n);
     float theta = lobeHalfAngle(roughness, u_pass.lobe.x);
     vec3 origin = x + n * u_pass.march.z;
-    int s = (cell.x & 1) + 2 * (cell.y & 1);
+    int s = alParity(cell, 4);
     uint queries = 0u;
     for (int i = 0; i < int(u_pass.counts.x); ++i) {
         AreaLightGpu L = u_pass.lights[i];

@@ -35,17 +35,21 @@
 // visibility=brute ray-marches every VPL at every cell (§5.3.3.1, the baseline of Fig. 5.4);
 // visibility=none is §5.3.2's V = 1.
 //
-// Deviations and assumptions (docs/techniques/area-light.md): Eq. 5.2's r^2 is kept at or above A / pi
-// (a near-field bound: no VPL gives more than pi L); bounce's BRDF is GGX, so the "Phong"
-// pass evaluates the GGX specular lobe and takes its width from the equivalent Phong exponent;
-// the specular pass multiplies a per-pixel Schlick Fresnel at the end; the specular pass ray-marches
-// its VPLs without bitstreams; the lobe samples of sharp lobes take the variance visibility of
-// §5.3.3.3 (24 queries of occluder-distance moments as ray fractions, 2x2 interleaved, 3x3 blur,
-// Chebyshev); visibility=shadow-maps is §5.4.6's rasterized baseline (a 64^2 paraboloid map per
-// VPL, "vpl-shadow-maps"); bitstreams are RGBA32UI image layers of 128 bits (the thesis: a 4 x 16-bit target for
-// 64 bits) written with image stores; the colour threshold compares a white receiver's radiance (the
-// display colour at 0 EV); thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the
-// voxel depth range (the scene bounds in view space) are assumptions (the thesis gives none).
+// visibility=shadow-maps is §5.4.6's rasterized baseline: a paraboloid map per VPL ("vpl-shadow-maps",
+// techniques/paraboloid/ParaboloidMaps.h).
+//
+// Deviations and assumptions (docs/techniques/area-light.md gives each its reason and values):
+// - Eq. 5.2's r^2 is kept at or above A / pi (a near-field bound: no VPL gives more than pi L).
+// - the "Phong" pass evaluates bounce's GGX lobe, its width from the equivalent Phong exponent.
+// - the specular pass multiplies a per-pixel Schlick Fresnel at the end.
+// - the specular pass ray-marches its VPLs without bitstreams.
+// - sharp lobes' samples take §5.3.3.3's variance visibility (moments as ray fractions, 2x2
+//   interleaved, 3x3 blur, Chebyshev).
+// - bitstreams are RGBA32UI image layers of 128 bits written with image stores (the thesis: a
+//   4 x 16-bit render target of 64 bits).
+// - the colour threshold compares a white receiver's radiance (the display colour at 0 EV).
+// - thresholds, ray steps, bias, the interleave reconstruction, the lobe threshold and the voxel
+//   depth range (the scene bounds in view space) are assumptions (the thesis gives none).
 // Only area lights are shaded: a scene with point, spot or directional lights or emissive materials
 // is refused, so that the output is the like-for-like counterpart of `bounce reference --bounces 0`.
 #include "techniques/area_light/AreaLightTechnique.h"
@@ -93,20 +97,6 @@ gl::ProgramDesc fullscreen(std::string_view name, std::string_view fragment) {
 }
 
 GLuint groups(int n) { return static_cast<GLuint>((n + kLocalSize - 1) / kLocalSize); }
-
-// A nearest-sampled 2D array texture (per-cell records over the atlas or the frame).
-gl::Texture arrayTexture(std::string_view name, glm::ivec2 size, int layers, GLenum format, int levels = 1) {
-    gl::TextureDesc d;
-    d.target = GL_TEXTURE_2D_ARRAY;
-    d.width = size.x;
-    d.height = size.y;
-    d.depth = layers;
-    d.levels = levels;
-    d.format = format;
-    d.minFilter = levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST;
-    d.magFilter = GL_NEAREST;
-    return gl::Texture::create(name, d);
-}
 
 // The view of the second voxel grid (voxelOutside): orthographic, along the first light's normal
 // (rays towards a light run mostly along it), over the scene's bounds and every shaded light's
@@ -238,18 +228,9 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
             if (ctx.scene.lights[i].twoSided)
                 return makeError("setting visibility=shadow-maps: light '{}' is two-sided; a paraboloid map covers one "
                                  "hemisphere", ctx.scene.lights[i].name);
-        BOUNCE_TRY(m_paraboloid, gl::Program::build({"areaLight.vplShadowMap",
-                                                     {{GL_VERTEX_SHADER, "techniques/paraboloid/paraboloid.vert"},
-                                                      {GL_FRAGMENT_SHADER, "techniques/paraboloid/paraboloid.frag"}}}));
-        gl::TextureDesc maps;
-        maps.target = GL_TEXTURE_2D_ARRAY;
-        maps.format = GL_DEPTH_COMPONENT32F;
-        maps.width = maps.height = m_shadowMapSize;
-        maps.depth = m_vplCount;
-        maps.minFilter = maps.magFilter = GL_LINEAR;
-        m_vplMaps = gl::Texture::create("areaLight.vplShadowMaps", maps);
-        m_vplMaps.setCompareMode(true);
-        m_vplMapFbo = gl::Framebuffer::create("areaLight.vplShadowMap.fbo");
+        BOUNCE_TRY(m_vplMaps, paraboloid::ParaboloidMaps::create(
+                                  {"areaLight.vplShadowMap", "areaLight.vplShadowMaps", "areaLight.vplShadowMap.fbo"},
+                                  GL_DEPTH_COMPONENT32F, m_shadowMapSize, m_vplCount));
     }
     glm::vec3 lo, hi;
     ctx.scene.bounds(0.0f, lo, hi);
@@ -349,7 +330,7 @@ void AreaLightTechnique::bindLightTextures(FrameContext& ctx) {
 void AreaLightTechnique::buildLobePyramid(FrameContext& ctx) {
     const int levels = m_pyramid->levels();
     if (!m_lobe || m_lobe.width() != m_size.x || m_lobe.height() != m_size.y || m_lobe.desc().levels != levels) {
-        m_lobe = arrayTexture("areaLight.lobePyramid", m_size, 1, GL_RGBA32F, levels);
+        m_lobe = gl::Texture::create2DArray("areaLight.lobePyramid", m_size.x, m_size.y, 1, GL_RGBA32F, levels);
     }
     ctx.gbuffer.bind();
     for (int k = 0; k < levels; ++k) {
@@ -370,43 +351,19 @@ void AreaLightTechnique::renderVplShadowMaps(FrameContext& ctx) {
     // The VPL positions of vpls.comp, on the CPU: the maps are drawn one per VPL.
     const std::vector<Light>& lights = ctx.sceneGpu.lights();
     const float offset = kVplMapOffsetInDiagonals * m_sceneDiagonal;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glEnable(GL_CLIP_DISTANCE0);
-    m_paraboloid.use();
-    m_paraboloid.set("u_far", kVplMapFarInDiagonals * m_sceneDiagonal);
-    m_paraboloid.set("u_size", glm::vec2(static_cast<float>(m_shadowMapSize)));
-    render::View view;
-    view.viewport = glm::ivec2(m_shadowMapSize);
-    const float one = 1.0f;
+    m_vplMaps.begin(kVplMapFarInDiagonals * m_sceneDiagonal);
     const int n = m_vplsPerSide;
     for (size_t k = 0; k < m_lightIndices.size(); ++k) {
         const Light& l = lights[m_lightIndices[k]];
         const glm::vec3 normal = l.areaNormal(), t = glm::normalize(l.edgeU), b = glm::cross(normal, t);
-        glm::mat4 vplFromWorld(1.0f);
-        for (int c = 0; c < 3; ++c) {  // rows t, b, n (GLM is column-major: [col][row])
-            vplFromWorld[c][0] = t[c];
-            vplFromWorld[c][1] = b[c];
-            vplFromWorld[c][2] = normal[c];
-        }
-        m_paraboloid.set("u_vplFromWorld", vplFromWorld);
+        m_vplMaps.setFrame(paraboloid::vplFromWorld(t, b, normal));
         for (int i = 0; i < n * n; ++i) {
             const glm::vec2 uv = (glm::vec2(i % n, i / n) + 0.5f) / static_cast<float>(n);
             const glm::vec3 p = l.position + (uv.x - 0.5f) * l.edgeU + (uv.y - 0.5f) * l.edgeV;
-            m_paraboloid.set("u_vplPosition", p + normal * offset);
-            m_vplMapFbo.attachLayer(GL_DEPTH_ATTACHMENT, m_vplMaps, static_cast<int>(k) * n * n + i);
-            glNamedFramebufferDrawBuffer(m_vplMapFbo.id(), GL_NONE);
-            BOUNCE_CHECK(m_vplMapFbo.complete(), "area-light VPL shadow map framebuffer");
-            m_vplMapFbo.bind();
-            glClearNamedFramebufferfv(m_vplMapFbo.id(), GL_DEPTH, 0, &one);
-            ctx.drawer.draw(view);
+            m_vplMaps.render(ctx.drawer, static_cast<int>(k) * n * n + i, p + normal * offset);
         }
     }
-    glDisable(GL_CLIP_DISTANCE0);
-    glDisable(GL_DEPTH_TEST);
+    m_vplMaps.end();
 }
 
 AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& ctx, nichols::MultiresBuffer& buffer,
@@ -419,7 +376,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
         m_flags.setFilter(GL_NEAREST, GL_NEAREST);
         m_subsets = gl::Texture::create2D("areaLight.subsets", atlas.x, atlas.y, GL_RGBA32F);
         m_subsets.setFilter(GL_NEAREST, GL_NEAREST);
-        m_bits = arrayTexture("areaLight.bitstreams", atlas, m_layers, GL_RGBA32UI);
+        m_bits = gl::Texture::create2DArray("areaLight.bitstreams", atlas.x, atlas.y, m_layers, GL_RGBA32UI);
     }
     const GLuint zero = 0;
     glClearTexImage(m_flags.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -481,7 +438,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
                     // Three RGBA32F layers per light: six queries' (d, d^2) per cell (§5.3.3.3).
                     const int layers = 3 * static_cast<int>(m_lightIndices.size());
                     if (!m_momentsTexture || m_momentsTexture.width() != atlas.x || m_momentsTexture.height() != atlas.y) {
-                        m_momentsTexture = arrayTexture("areaLight.varianceMoments", atlas, layers, GL_RGBA32F);
+                        m_momentsTexture = gl::Texture::create2DArray("areaLight.varianceMoments", atlas.x, atlas.y, layers, GL_RGBA32F);
                     }
                     m_momentsTexture.bindImage(BINDING_IMG0, GL_READ_WRITE, 0, true);
                     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -500,7 +457,7 @@ AreaLightTechnique::PassCounts AreaLightTechnique::renderMultires(FrameContext& 
             } else {
                 m_flags.bind(BINDING_TEX_TECH2);
                 m_bits.bindImage(BINDING_IMG0, GL_READ_WRITE, 0, true);
-                if (m_vplMaps) m_vplMaps.bind(BINDING_TEX_TECH3);
+                if (m_vplMaps) m_vplMaps.maps().bind(BINDING_TEX_TECH3);
                 gather.set("u_parentOrigin", parentOrigin);
                 gather.set("u_parentSize", parentSize);
                 gather.set("u_coarsest", coarsest);

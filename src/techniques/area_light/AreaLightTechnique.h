@@ -8,6 +8,7 @@
 #include "techniques/Technique.h"
 #include "techniques/area_light/area_shared.h"
 #include "techniques/nichols/MultiresBuffer.h"
+#include "techniques/paraboloid/ParaboloidMaps.h"
 #include "techniques/screen_voxels/ScreenVoxels.h"
 
 #include <array>
@@ -81,10 +82,10 @@ private:
     gl::Program m_vplProgram, m_lobeProgram, m_classify, m_stencil, m_gatherDiffuse, m_gatherSpecular, m_resolve,
         m_discontinuity, m_final;
     gl::Buffer m_passUbo, m_vpls, m_stats;
-    gl::Texture m_lobe, m_flags, m_bits, m_subsets, m_vplMaps;
-    gl::Program m_paraboloid, m_moments;
+    gl::Texture m_lobe, m_flags, m_bits, m_subsets;
+    paraboloid::ParaboloidMaps m_vplMaps;  // visibility=shadow-maps: one layer per VPL
+    gl::Program m_moments;
     gl::Texture m_momentsTexture;
-    gl::Framebuffer m_vplMapFbo;
     std::vector<gpu::AreaVplGpu> m_vplCpu;  // shadow-map baseline: the VPL positions to render maps from
     float m_sceneDiagonal = 1.0f;
     gl::Framebuffer m_finalFbo, m_clearFbo;

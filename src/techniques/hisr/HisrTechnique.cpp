@@ -11,10 +11,10 @@
 // "voxelize" pass voxelizes the camera's view and each accepted node's term is multiplied by a voxel
 // march from the cell's patch to the node's VPL; fewer roots per draw keep the walk within the budget.
 //
-// Deviations (docs/techniques/hisr.md): the tree is the RSM's mip chain itself (a 2D-array mipmap),
-// not the Haar-like cache-coherent re-layout of §4.2.4; Eq. 4.8 uses I = 1 (normalised light) and the
-// node level's resolution for RSM_res, so coarse nodes (larger solid angle) refine from farther away;
-// tau and maxDepth defaults are assumptions.
+// Deviations (docs/techniques/hisr.md gives each its reason):
+// - the tree is the RSM's mip chain itself (a 2D-array mipmap), not §4.2.4's cache-coherent re-layout.
+// - Eq. 4.8 uses I = 1 (normalised light) and the node level's resolution for RSM_res.
+// - tau and maxDepth defaults are assumptions.
 #include "techniques/hisr/HisrTechnique.h"
 
 #include "core/Check.h"

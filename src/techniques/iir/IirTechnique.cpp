@@ -8,7 +8,7 @@
 //       areas as intensities. Rays come from an Embree RayCaster over the static geometry, built once
 //       (bounce's static geometry never changes).
 //   3b  "sm-rendering": a paraboloid shadow map (256², 16-bit depth) per NEW VPL, one layer of a 2D
-//       array indexed by the VPL's slot, static geometry only.
+//       array indexed by the VPL's slot, static geometry only (techniques/paraboloid/ParaboloidMaps.h).
 //   5   the camera G-buffer (shared Pipeline pass).
 //   6   "split": positions and normals into an n×m atlas of interleaved sub-images (§5.1).
 //   7   "accum": per atlas pixel, irradiance from the VPLs of its tile, with paraboloid shadow
@@ -25,11 +25,13 @@
 // (disc) or Φ · A_i / 4π (sphere), A_i the Voronoi cell area — the flux of the light's directions in
 // the cell; with paperNormalisation the paper's Φ · A_i / Σ_VPL A_j.
 //
-// Deviations (docs/techniques/iir.md): rays that escape keep a Miss sample carrying their cell's
-// flux; the first frame fills the budget (the paper does not say how it starts); paraboloid depth
-// is the exact ray-plane distance per fragment rather than interpolated from vertices; area and
-// directional primary lights become point emitters; VPL management overlaps only the GPU work
-// already queued this frame (no one-frame delay); G-buffer atlases are 32-bit float.
+// Deviations (docs/techniques/iir.md gives each its reason):
+// - rays that escape keep a Miss sample carrying their cell's flux.
+// - the first frame fills the budget (the paper does not say how it starts).
+// - paraboloid depth is the exact ray-plane distance per fragment, not interpolated from vertices.
+// - area and directional primary lights become point emitters.
+// - VPL management overlaps only the GPU work already queued this frame (no one-frame delay).
+// - G-buffer atlases are 32-bit float.
 #include "techniques/iir/IirTechnique.h"
 
 #include "scene/AreaTexture.h"
@@ -163,9 +165,6 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
     ctx.scene.bounds(0.0f, lo, hi);
     m_sceneDiagonal = std::max(glm::length(hi - lo), 1e-6f);
 
-    BOUNCE_TRY(m_paraboloid, gl::Program::build({"iir.paraboloid",
-                                                 {{GL_VERTEX_SHADER, "techniques/paraboloid/paraboloid.vert"},
-                                                  {GL_FRAGMENT_SHADER, "techniques/paraboloid/paraboloid.frag"}}}));
     BOUNCE_TRY(m_split, gl::Program::build({"iir.split", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                                           {GL_FRAGMENT_SHADER, "techniques/iir/split.frag"}}}));
     BOUNCE_TRY(m_accumulate, gl::Program::build({"iir.accum", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
@@ -207,15 +206,9 @@ Expected<void> IirTechnique::setup(const SetupContext& ctx) {
         m_textureMeans.push_back(t.image.empty() ? glm::vec3(1.0f) : glm::vec3(sum / double(t.image.pixelCount())));
     }
 
-    gl::TextureDesc maps;
-    maps.target = GL_TEXTURE_2D_ARRAY;
-    maps.format = GL_DEPTH_COMPONENT16;  // §6: 16-bit depth
-    maps.width = maps.height = m_shadowMapSize;
-    maps.depth = m_maxLights;
-    maps.minFilter = maps.magFilter = GL_LINEAR;
-    m_shadowMaps = gl::Texture::create("iir.paraboloidMaps", maps);
-    m_shadowMaps.setCompareMode(true);
-    m_shadowFbo = gl::Framebuffer::create("iir.paraboloid.fbo");
+    // §6: 16-bit depth.
+    BOUNCE_TRY(m_maps, paraboloid::ParaboloidMaps::create({"iir.paraboloid", "iir.paraboloidMaps", "iir.paraboloid.fbo"},
+                                                          GL_DEPTH_COMPONENT16, m_shadowMapSize, m_maxLights));
     m_mapSamples = gl::Query::create("iir.mapSamples", GL_SAMPLES_PASSED);
 
     const int n = m_tilesX, m = m_tilesY;
@@ -332,41 +325,16 @@ void IirTechnique::renderShadowMaps(FrameContext& ctx, const std::vector<SlotId>
     glBeginQuery(GL_SAMPLES_PASSED, m_mapSamples.id());
     const float offset = kSurfaceOffsetInDiagonals * m_sceneDiagonal;
     const float far = kShadowFarInDiagonals * m_sceneDiagonal;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glEnable(GL_CLIP_DISTANCE0);
-    m_paraboloid.use();
-    m_paraboloid.set("u_far", far);
-    m_paraboloid.set("u_size", glm::vec2(static_cast<float>(m_shadowMapSize)));
-    render::View view;
-    view.viewport = glm::ivec2(m_shadowMapSize);
-    const float one = 1.0f;
+    m_maps.begin(far);
     for (SlotId slot : slots) {
         const VplSample& s = m_distribution->sample(slot);
         const SlotAttributes& a = m_slots[slot];
         const glm::vec3 t = anyTangent(a.normal);
-        const glm::vec3 b = glm::cross(a.normal, t);
-        glm::mat4 vplFromWorld(1.0f);
-        // Rows t, b, n: GLM is column-major, so element [col][row].
-        for (int c = 0; c < 3; ++c) {
-            vplFromWorld[c][0] = t[c];
-            vplFromWorld[c][1] = b[c];
-            vplFromWorld[c][2] = a.normal[c];
-        }
-        m_paraboloid.set("u_vplFromWorld", vplFromWorld);
-        m_paraboloid.set("u_vplPosition", s.positionWorld + a.normal * offset);
-        m_shadowFbo.attachLayer(GL_DEPTH_ATTACHMENT, m_shadowMaps, static_cast<int>(slot));
-        glNamedFramebufferDrawBuffer(m_shadowFbo.id(), GL_NONE);
-        BOUNCE_CHECK(m_shadowFbo.complete(), "iir paraboloid framebuffer (layer {})", slot);
-        m_shadowFbo.bind();
-        glClearNamedFramebufferfv(m_shadowFbo.id(), GL_DEPTH, 0, &one);
-        ctx.drawer.draw(view, render::DrawFilter::Static);
+        m_maps.setFrame(paraboloid::vplFromWorld(t, glm::cross(a.normal, t), a.normal));
+        m_maps.render(ctx.drawer, static_cast<int>(slot), s.positionWorld + a.normal * offset, render::DrawFilter::Static);
     }
     glEndQuery(GL_SAMPLES_PASSED);
-    glDisable(GL_CLIP_DISTANCE0);
+    m_maps.end();
 }
 
 void IirTechnique::collectCounters(Counters& out) {
@@ -456,7 +424,7 @@ void IirTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         glViewport(0, 0, atlas.x, atlas.y);
         m_splitPosition.bind(BINDING_TEX_INPUT0);
         m_splitNormal.bind(BINDING_TEX_INPUT1);
-        m_shadowMaps.bind(BINDING_TEX_TECH0);
+        m_maps.maps().bind(BINDING_TEX_TECH0);
         m_vplBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_tileBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
         setTiling(m_accumulate);

@@ -7,6 +7,7 @@
 #include "reference/RayCaster.h"
 #include "techniques/Technique.h"
 #include "techniques/iir/TileAssignment.h"
+#include "techniques/paraboloid/ParaboloidMaps.h"
 #include "techniques/iir/VplDistribution.h"
 
 #include <memory>
@@ -47,7 +48,7 @@ public:
     const gl::Buffer& tileBuffer() const { return m_tileBuffer; }
     // The paraboloid shadow maps (GL_DEPTH_COMPONENT16 2D array, layer = slot) and the unit normal
     // (the map's +z) of the VPL in a slot, for tests that check the maps' contents.
-    const gl::Texture& shadowMaps() const { return m_shadowMaps; }
+    const gl::Texture& shadowMaps() const { return m_maps.maps(); }
     glm::vec3 slotNormal(SlotId slot) const { return m_slots.at(slot).normal; }
     // The paraboloid frame's +x for a normal (+y is normal x tangent) and the world position the map
     // is rendered from for a VPL at `position` with `normal`.
@@ -95,9 +96,8 @@ private:
     gl::Query m_mapSamples;     // GL_SAMPLES_PASSED over the frame's maps
     bool m_mapQueries = false;  // this frame's maps were queried
 
-    gl::Program m_paraboloid, m_split, m_accumulate, m_combine, m_filter;
-    gl::Texture m_shadowMaps;  // GL_DEPTH_COMPONENT16 2D array, one layer per slot
-    gl::Framebuffer m_shadowFbo;
+    gl::Program m_split, m_accumulate, m_combine, m_filter;
+    paraboloid::ParaboloidMaps m_maps;  // GL_DEPTH_COMPONENT16, one layer per slot
     gl::Texture m_splitPosition, m_splitNormal, m_tileIrradiance, m_irradiance;
     gl::Framebuffer m_splitFbo, m_accumulateFbo, m_combineFbo, m_filterFbo;
     gl::Buffer m_vplBuffer, m_tileBuffer;

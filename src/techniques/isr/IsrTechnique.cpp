@@ -18,11 +18,12 @@
 // The eye-space passes (min-max-mipmap, stencil-setup, the stencilled draw, upsample) are
 // techniques/nichols/StencilledGather, shared with hisr; isr adds the RSM, the VPL cache and its gather.
 //
-// Deviations (docs/techniques/isr.md): stencil set-up is one quad per level rectangle of the atlas
-// (same fragments as one full-atlas pass); the thresholds, the atlas layout, the upsampling weights,
-// the coarse patches' position/normal (mean of the covered pixels) and the finest light level are
-// assumptions; the flux uses each texel's exact solid angle (no equal-solid-angle approximation);
-// compute shaders replace the geometry-shader cluster pass (same selection rule).
+// Deviations (docs/techniques/isr.md gives each its reason):
+// - stencil set-up is one quad per level rectangle of the atlas (same fragments as one full-atlas pass).
+// - thresholds, atlas layout, upsampling weights, the coarse patches' position/normal (mean of the
+//   covered pixels) and the finest light level are assumptions.
+// - the flux uses each texel's exact solid angle (no equal-solid-angle approximation).
+// - compute shaders replace the geometry-shader cluster pass (same selection rule).
 #include "techniques/isr/IsrTechnique.h"
 
 #include "core/Check.h"

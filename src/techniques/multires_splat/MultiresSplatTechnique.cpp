@@ -36,16 +36,15 @@
 // pyramid, lists and atlas are built at output / 2^k and the result upsampled to the output
 // (empty-aware bilinear, nichols/output_upsample.glsl); linearDepth selects §3.2.2.1's linear-depth
 // min-max mipmap instead of the depth-derivative max-mipmap.
-// Deviations (mode A): the thesis's Phong lobe is replaced by bounce's GGX lobe (common/brdf.glsl; GGX
-// alpha = roughness^2 is about a Phong exponent 2/alpha^2 - 2, Walter et al. 2007); the glossy
-// material is read from the G-buffer at each cell's central pixel; T is relative (the thesis's is an
-// unstated absolute radiance); the Lambert part of mode A's splats is applied per pixel rather than
-// at the patch (identical at full resolution, keeps texture detail, keeps Lambertian scenes = mode B).
-// Deviations: the geometry shader runs four instances per subsplat, each emitting at most one point
-// (the thesis's shader emits up to four): on llvmpipe, multi-vertex geometry-shader output captured by
-// transform feedback lost primitives (measured: 2251 in, 2155 out of a pass-through pass); a flattened atlas instead of one render target per level (same texels); the refinement
-// test reads the pyramid's monotone refine flag (a cell splits if it or a descendant holds a
-// discontinuity), so the final list equals isr's stencil.
+// Deviations (docs/techniques/multires-splat.md gives each its reason and measurement):
+// - mode A: bounce's GGX lobe (common/brdf.glsl) in place of the thesis's Phong lobe.
+// - mode A: the glossy material is read from the G-buffer at each cell's central pixel.
+// - mode A: the contrast threshold T is relative (the thesis's is an unstated absolute radiance).
+// - mode A: the Lambert part of the splats is applied per pixel, not at the patch.
+// - the geometry shader runs four instances per subsplat, each emitting at most one point (the
+//   thesis's emits up to four; llvmpipe's transform feedback lost multi-vertex output).
+// - a flattened atlas instead of one render target per level (same texels).
+// - the refinement test reads the pyramid's monotone refine flag, so the final list equals isr's stencil.
 #include "techniques/multires_splat/MultiresSplatTechnique.h"
 
 #include "core/Check.h"

@@ -33,18 +33,6 @@ constexpr float kMissDistance = 1.0e4f;
 
 void barrier() { glMemoryBarrier(GL_ALL_BARRIER_BITS); }
 
-gl::Texture arrayTexture(const char* name, GLenum format, int size, int layers, GLenum filter, int levels = 1) {
-    gl::TextureDesc d;
-    d.target = GL_TEXTURE_2D_ARRAY;
-    d.format = format;
-    d.width = d.height = size;
-    d.depth = layers;
-    d.levels = levels;
-    d.minFilter = levels > 1 ? GL_LINEAR_MIPMAP_NEAREST : filter;
-    d.magFilter = filter;
-    return gl::Texture::create(name, d);
-}
-
 gl::Texture msArray(const char* name, GLenum format, int size, int layers, int samples) {
     gl::TextureDesc d;
     d.target = GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
@@ -174,22 +162,22 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
     // Hemicubes.
     const int R = opt.hemicubeSize, Rb = opt.backSize, layers = static_cast<int>(5 * kBatch);
     const std::vector<float> deltaTable = deltaFormFactors(R);
-    s.m_deltaFF = arrayTexture("radiosity.deltaFF", GL_R32F, R, 5, GL_NEAREST);
+    s.m_deltaFF = gl::Texture::create2DArray("radiosity.deltaFF", R, R, 5, GL_R32F, 1, GL_NEAREST);
     glTextureSubImage3D(s.m_deltaFF.id(), 0, 0, 0, 0, R, R, 5, GL_RED, GL_FLOAT, deltaTable.data());
-    s.m_idA = arrayTexture("radiosity.hemicube.idOld", GL_R32UI, R, layers, GL_NEAREST);
-    s.m_idB = arrayTexture("radiosity.hemicube.idNew", GL_R32UI, R, layers, GL_NEAREST);
-    s.m_shot = arrayTexture("radiosity.hemicube.shot", GL_RGBA16F, R, layers, GL_NEAREST);
-    s.m_depth = arrayTexture("radiosity.hemicube.depth", GL_DEPTH_COMPONENT32F, R, layers, GL_NEAREST);
+    s.m_idA = gl::Texture::create2DArray("radiosity.hemicube.idOld", R, R, layers, GL_R32UI, 1, GL_NEAREST);
+    s.m_idB = gl::Texture::create2DArray("radiosity.hemicube.idNew", R, R, layers, GL_R32UI, 1, GL_NEAREST);
+    s.m_shot = gl::Texture::create2DArray("radiosity.hemicube.shot", R, R, layers, GL_RGBA16F, 1, GL_NEAREST);
+    s.m_depth = gl::Texture::create2DArray("radiosity.hemicube.depth", R, R, layers, GL_DEPTH_COMPONENT32F, 1, GL_NEAREST);
     s.m_radMs = msArray("radiosity.hemicube.radiosity", GL_RGBA16F, R, layers, opt.msaa);
     s.m_depthMs = msArray("radiosity.hemicube.depthMs", GL_DEPTH_COMPONENT32F, R, layers, opt.msaa);
     s.m_backMs = msArray("radiosity.hemicube.back", GL_RGBA16F, Rb, layers, opt.msaa);
     s.m_backDepthMs = msArray("radiosity.hemicube.backDepth", GL_DEPTH_COMPONENT32F, Rb, layers, opt.msaa);
-    s.m_backOld = arrayTexture("radiosity.hemicube.backOld", GL_RGBA16F, Rb, layers, GL_LINEAR);
-    s.m_backNew = arrayTexture("radiosity.hemicube.backNew", GL_RGBA16F, Rb, layers, GL_LINEAR);
+    s.m_backOld = gl::Texture::create2DArray("radiosity.hemicube.backOld", Rb, Rb, layers, GL_RGBA16F, 1, GL_LINEAR);
+    s.m_backNew = gl::Texture::create2DArray("radiosity.hemicube.backNew", Rb, Rb, layers, GL_RGBA16F, 1, GL_LINEAR);
     if (opt.mipIntegration) {
         const int levels = static_cast<int>(std::log2(R)) + 1;
         if ((1 << (levels - 1)) != R) return makeError("integration=mipmap needs a power-of-two hemicubeSize, not {}", R);
-        s.m_weighted = arrayTexture("radiosity.hemicube.weighted", GL_RGBA32F, R, layers, GL_LINEAR, levels);
+        s.m_weighted = gl::Texture::create2DArray("radiosity.hemicube.weighted", R, R, layers, GL_RGBA32F, levels, GL_LINEAR);
     }
     const auto fbo = [](const char* name, std::initializer_list<const gl::Texture*> colours, const gl::Texture& depth) {
         gl::Framebuffer f = gl::Framebuffer::create(name);
@@ -392,12 +380,7 @@ void RadiositySystem::renderHemicubes(render::SceneDrawer& drawer, HemicubeKind 
     if (kind == HemicubeKind::Radiosity) glClearNamedFramebufferfv(fbo->id(), GL_COLOR, 0, black);
     if (kind == HemicubeKind::Back) glClearNamedFramebufferfv(fbo->id(), GL_COLOR, 0, miss);
     glClearNamedFramebufferfv(fbo->id(), GL_DEPTH, 0, &one);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glEnable(GL_CLIP_DISTANCE0);
+    render::beginDepthTestedPass(1);
     bindCommon();
     m_total.bind(BINDING_TEX_TECH0);
     m_unshot.bind(BINDING_TEX_TECH1);
@@ -425,7 +408,7 @@ void RadiositySystem::renderHemicubes(render::SceneDrawer& drawer, HemicubeKind 
             }
         }
     }
-    glDisable(GL_CLIP_DISTANCE0);
+    render::endDepthTestedPass(1);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     m_hemicubes += count;
     if (kind == HemicubeKind::Back) {
@@ -593,11 +576,7 @@ void RadiositySystem::display(render::SceneDrawer& drawer, const render::View& c
     glClearNamedFramebufferfv(m_fboDisplay.id(), GL_COLOR, 0, clear);
     glClearNamedFramebufferfv(m_fboDisplay.id(), GL_COLOR, 1, clear);
     glClearNamedFramebufferfv(m_fboDisplay.id(), GL_DEPTH, 0, &one);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    render::beginDepthTestedPass();
     bindCommon();
     m_total.bind(BINDING_TEX_TECH0);
     m_light.bind(BINDING_TEX_TECH1);

@@ -21,12 +21,12 @@
 // shot during the regular progressive propagation"): after the insertion and after every
 // redistribution, progressive refinement runs to the threshold with M in place, shooting the unshot
 // radiosity the redistribution left (C's new shadows are negative unshot radiosity). Without it C's
-// shot radiosity stayed the M-free solution for ever: R_g(C, M) gathered unshadowed surroundings (the
-// rotating box's faces 15-55 % too bright), which weakened the shadows cast through M and left every
-// second bounce of the change out (docs/techniques/radiosity.md, "Cross redistribution's error").
+// shot radiosity stayed the M-free solution for ever: R_g(C, M) gathered unshadowed surroundings, which
+// weakened the shadows cast through M and left every second bounce of the change out
+// (docs/techniques/radiosity.md, "Cross redistribution's error", has the measurements).
 // As in the thesis, M is not removed and re-inserted around these iterations ("costly, ... only for
 // the initial radiosity propagation"), so C's shot radiosity changes between redistributions and the
-// negation of the old position is exact only to that change (measured: no growth over 200 frames).
+// negation of the old position is exact only to that change (docs/techniques/radiosity.md measures it).
 // No PR iteration is part of the redistribution itself (sec. 4.5.3): its 4 |M| hemicubes are counted
 // apart (redistributionHemicubes); `propagate=false` leaves the iterations out.
 #include "techniques/radiosity_cross/CrossRadiosityTechnique.h"

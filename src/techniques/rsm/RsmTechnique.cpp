@@ -16,10 +16,10 @@
 // "voxelize" pass voxelizes the camera's view and each VPL's contribution is multiplied by a voxel
 // march from the pixel to the VPL; the march multiplies a VPL's loop iterations, so batches shrink.
 //
-// Deviations: the thesis's RSM assumes a spot light and equal texel solid angles (Eq. 4.4); here each
-// texel's exact solid angle and the light's actual intensity give the flux in watts, so the
-// 1/(4 pi) mismatch between Eqs. 4.4 and 4.7 does not arise. Point, area and directional lights are
-// supported as documented in ReflectiveShadowMap.h. Scenes without lights give zero indirect light.
+// Deviations (docs/techniques/rsm.md gives each its reason):
+// - each texel's exact solid angle and the light's intensity give the flux in watts (the thesis: a spot
+//   light, equal texel solid angles, Eq. 4.4), so the 1/(4 pi) mismatch of Eqs. 4.4 and 4.7 does not arise.
+// - point, area and directional lights too (nichols/ReflectiveShadowMap.h); no lights: zero indirect light.
 // References: Nichols (2010) §3.2.1, §4.2.1.2; Dachsbacher & Stamminger (2005).
 #include "techniques/rsm/RsmTechnique.h"
 
