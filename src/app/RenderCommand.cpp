@@ -9,6 +9,7 @@
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
 
+#include <chrono>
 #include <spdlog/spdlog.h>
 
 namespace bounce {
@@ -99,7 +100,11 @@ int runRender(const RenderOptions& o) {
         if (auto w = checkWritable(o.stats); !w.ok()) return failCommand(cmd, "--stats " + w.error().message);
     auto technique = createTechnique(o.technique);
     if (!technique.ok()) return failCommand(cmd, "--technique: " + technique.error().message);
+    const auto loadStart = std::chrono::steady_clock::now();
     auto scene = loadSceneWithParams(o.scene, o.sceneParams);
+    // Scene loading (file or generator, and finalizeScene), recorded with --stats (issue 30: load time
+    // of Sponza-class scenes).
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!scene.ok()) return failCommand(cmd, scene.error().message);
     // As `bounce reference` (PathTracer::create): a black image is not a render of anything.
     if (!scene->emitsLight())
@@ -119,7 +124,10 @@ int runRender(const RenderOptions& o) {
     // The device profile's defaults (core/DeviceProfile.h), then the scene's and the command line's values again.
     if (auto r = applyAllSettings(*scene, **technique, renderSettings, o.settings, (*context)->info().profile); !r.ok())
         return failCommand(cmd, r.error().message);
+    const auto setupStart = std::chrono::steady_clock::now();
     auto pipeline = Pipeline::create(*scene, std::move(*technique), *size, renderSettings);
+    // Uploading the scene and the technique's set-up (before frame 0).
+    const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
     if (!pipeline.ok()) return failCommand(cmd, pipeline.error().message);
 
     std::vector<FrameStats> frames;
@@ -143,7 +151,8 @@ int runRender(const RenderOptions& o) {
     outputs.add(o.out, std::move(*encoded));
     if (!o.stats.empty()) {
         nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
-                                {"frame_count", o.frames}, {"start_frame", o.startFrame}, {"stats_every", o.statsEvery}};
+                                {"frame_count", o.frames}, {"start_frame", o.startFrame}, {"stats_every", o.statsEvery},
+                                {"scene_load_seconds", loadSeconds}, {"setup_seconds", setupSeconds}};
         const auto record = renderRunRecord(*scene, **pipeline, frames, (*context)->info(), extra);
         outputs.add(o.stats, record.dump(2) + "\n");
     }
