@@ -24,9 +24,9 @@ constexpr double kDefaultTriangles = 150000.0;
 constexpr double kMaxTriangles = 2.0e7;
 
 // Courtyard layout, the atrium's (AtriumScene.cpp): x in [-6, 6], z in [-10, 10], walls 9 m high,
-// arcade columns at |x| = 3.5 m, 2 m apart along z from -9 to 9, storeys 4 m, roofs at 8 m.
+// arcade columns (radius 0.25 m) at |x| = 3.5 m, 2 m apart along z from -9 to 9, storeys 4 m, roofs at 8 m.
 constexpr float kHalfWidth = 6.0f, kHalfLength = 10.0f, kWallHeight = 9.0f;
-constexpr float kArcadeX = 3.5f, kStoreyHeight = 4.0f, kSlabThickness = 0.25f;
+constexpr float kArcadeX = 3.5f, kStoreyHeight = 4.0f;
 
 // Foliage (bounce's design): a planter in front of every other arcade bay on the courtyard side,
 // a bush of crossed leaf cards in it; ivy cards hanging from the gallery roof's edge over every
@@ -172,7 +172,6 @@ Expected<Scene> buildCourtyard(const SceneParams& params) {
         sky.radiance = kSkyRadiance;
         s.lights.push_back(sky);
     }
-    (void)kSlabThickness;
     return s;
 }
 
