@@ -24,6 +24,8 @@ struct MaterialGpu {
     vec4 baseColor;  // rgb: albedo, a: texture layer in the base-colour array, or -1
     vec4 emission;   // rgb: emitted radiance W/(m^2 sr); a: its texture's layer in the same array, or -1
     vec4 params;     // x: roughness, y: metallic, z: specularF0, w: 1 if two-sided
+    vec4 alpha;      // x: alpha cutoff (0: opaque), y: coverage factor, z: coverage texture layer or -1
+    vec4 maps;       // x: normal map layer or -1, y: normal scale, z: metallic-roughness layer or -1
 };
 
 // The view a pass renders from (camera, light, cube or hemicube face).
@@ -66,7 +68,7 @@ struct FrameUniforms {
 
 #ifdef __cplusplus
 static_assert(sizeof(ObjectGpu) == 144);
-static_assert(sizeof(MaterialGpu) == 48);
+static_assert(sizeof(MaterialGpu) == 80);
 static_assert(sizeof(ViewUniforms) == 160);
 static_assert(sizeof(LightGpu) == 192);
 static_assert(sizeof(FrameUniforms) == 240);

@@ -9,6 +9,7 @@
 in vec3 v_posWorld;
 in vec3 v_normalWorld;
 in vec2 v_uv;
+in vec4 v_tangentWorld;
 flat in uint v_object;
 
 layout(location = 0) out vec4 o_position;
@@ -22,14 +23,20 @@ void main() {
     vec3 n = normalize(v_normalWorld);
     bool twoSided = m.params.w > 0.5;
     bool back = !gl_FrontFacing;
+    // Every implicit-derivative lookup comes before the discards (derivatives after a discard are
+    // undefined in GLSL 4.50); the normal map is applied on the front side, then flipped, as the
+    // reference does.
     vec3 albedo = materialAlbedo(material, v_uv);
     vec3 emission = materialEmission(material, v_uv);
+    n = materialNormal(material, v_uv, n, v_tangentWorld);
+    vec2 roughnessMetallic = materialRoughnessMetallic(material, v_uv);
+    if (materialMasked(material, v_uv)) discard;
     if (back) {
         if (!twoSided) discard;
         n = -n;
     }
     o_position = vec4(v_posWorld, 1.0);
-    o_normal = vec4(n, m.params.x);
-    o_albedo = vec4(albedo, m.params.y);
+    o_normal = vec4(n, roughnessMetallic.x);
+    o_albedo = vec4(albedo, roughnessMetallic.y);
     o_emission = vec4(emission, m.params.z);
 }

@@ -10,6 +10,7 @@
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
 
+#include <chrono>
 #include <spdlog/spdlog.h>
 
 #include <optional>
@@ -92,7 +93,11 @@ int runRender(const RenderOptions& o) {
         if (auto w = checkWritable(o.stats); !w.ok()) return failCommand(cmd, "--stats " + w.error().message);
     auto technique = createRenderTechnique(o.technique);
     if (!technique.ok()) return failCommand(cmd, technique.error().message);
+    const auto loadStart = std::chrono::steady_clock::now();
     auto scene = loadSceneWithParams(o.scene, o.sceneParams);
+    // Scene loading (file or generator, and finalizeScene), recorded with --stats (issue 30: load time
+    // of Sponza-class scenes).
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!scene.ok()) return failCommand(cmd, scene.error().message);
     std::optional<CameraPath> path;
     if (!o.cameraPath.empty()) {
@@ -103,9 +108,12 @@ int runRender(const RenderOptions& o) {
     // A run whose timings are recorded (--stats) gets no debug context: synchronous KHR_debug output
     // serialises the driver, and bench/ measures without it (docs/gpu.md "Measured runs"). The session
     // applies the device profile's defaults under the scene's and --set values.
+    const auto setupStart = std::chrono::steady_clock::now();
     auto session = RenderSession::create(std::make_shared<Scene>(std::move(*scene)), std::move(*technique), *size, o.settings,
                                          static_cast<uint32_t>(o.startFrame),
                                          o.stats.empty() ? gl::ContextConfig{} : gl::measuredContextConfig());
+    // The context, uploading the scene and the technique's set-up (before frame 0).
+    const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
     if (!session.ok()) return failCommand(cmd, session.error().message);
     if (path) return renderCameraPath(o, *path, **session, *component);
 
@@ -127,7 +135,8 @@ int runRender(const RenderOptions& o) {
     outputs.add(o.out, std::move(*encoded));
     if (!o.stats.empty()) {
         nlohmann::json extra = {{"command", "render"}, {"component", o.component}, {"output", o.out},
-                                {"frame_count", o.frames}, {"start_frame", o.startFrame}, {"stats_every", o.statsEvery}};
+                                {"frame_count", o.frames}, {"start_frame", o.startFrame}, {"stats_every", o.statsEvery},
+                                {"scene_load_seconds", loadSeconds}, {"setup_seconds", setupSeconds}};
         outputs.add(o.stats, (*session)->runRecord(frames, extra).dump(2) + "\n");
     }
     if (auto r = outputs.commit(); !r.ok()) return failCommand(cmd, r.error().message);

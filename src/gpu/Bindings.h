@@ -77,5 +77,6 @@
 #define ATTR_NORMAL 1
 #define ATTR_UV 2
 #define ATTR_OBJECT_INDEX 3  // per-instance; the draw's baseInstance selects the object
+#define ATTR_TANGENT 4  // vec4 tangent (xyz) and bitangent sign (w); w = 0: the mesh has none
 
 #endif

@@ -72,6 +72,22 @@ void passThroughBackOfAreaLight(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// Alpha-masked materials (docs/scene.md "Materials"): a candidate hit where the coverage is below the
+// cutoff is no hit, for camera, bounce, shadow and photon rays alike (the rasterizer discards the
+// same texels in every pass).
+void rejectMaskedHits(const RTCFilterFunctionNArguments* args) {
+    const auto* g = static_cast<const SceneGeometry*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        const glm::uvec3 t = g->triangles[prim];
+        const glm::vec2 uv = (1.0f - u - v) * g->uvs[t.x] + u * g->uvs[t.y] + v * g->uvs[t.z];
+        const float sample = g->alphaTexture ? lookupBilinearRepeat(*g->alphaTexture, uv).r : 1.0f;
+        if (!(g->alpha * sample >= g->alphaCutoff)) args->valid[i] = 0;
+    }
+}
+
 Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, unsigned id) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geom) return makeError("embree: cannot create a triangle geometry");
@@ -90,6 +106,12 @@ Expected<void> attach(RTCDevice device, RTCScene scene, const SceneGeometry& g, 
         rtcSetGeometryUserData(geom, const_cast<glm::vec3*>(g.faceNormals.data()));
         rtcSetGeometryIntersectFilterFunction(geom, passThroughBackOfAreaLight);
         rtcSetGeometryOccludedFilterFunction(geom, passThroughBackOfAreaLight);
+    }
+    if (g.kind == SceneGeometry::Kind::Object && g.alphaCutoff > 0.0f && !g.uvs.empty()) {
+        // The geometry stays at this address: m_geometries' buffer moves with the EmbreeScene.
+        rtcSetGeometryUserData(geom, const_cast<SceneGeometry*>(&g));
+        rtcSetGeometryIntersectFilterFunction(geom, rejectMaskedHits);
+        rtcSetGeometryOccludedFilterFunction(geom, rejectMaskedHits);
     }
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(scene, geom, id);
@@ -121,6 +143,15 @@ Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOp
     out.m_device.reset(rtcNewDevice(kDeviceConfig));
     if (!out.m_device) return makeError("embree: cannot create a device (error {})", static_cast<int>(rtcGetDeviceError(nullptr)));
     rtcSetDeviceErrorFunction(out.m_device.get(), onEmbreeError, nullptr);
+    // Each texture an alpha mask or normal map reads is copied once, shared by the geometries using it
+    // (the EmbreeScene must not depend on the Scene outliving it).
+    std::vector<std::shared_ptr<const Image>> textureCopies(scene.textures.size());
+    const auto textureCopy = [&](int index) -> std::shared_ptr<const Image> {
+        if (index < 0 || static_cast<size_t>(index) >= scene.textures.size()) return nullptr;
+        auto& copy = textureCopies[static_cast<size_t>(index)];
+        if (!copy) copy = std::make_shared<const Image>(scene.textures[static_cast<size_t>(index)].image);
+        return copy;
+    };
 
     for (size_t oi = 0; oi < scene.objects.size(); ++oi) {
         const Object& object = scene.objects[oi];
@@ -158,11 +189,30 @@ Expected<EmbreeScene> EmbreeScene::build(const Scene& scene, const EmbreeSceneOp
             }
         }
         const Material& material = scene.materials[object.material];
-        if (hasUvs && (material.baseColorTexture >= 0 || material.emissionTexture >= 0)) g.uvs = mesh.uvs;
+        const bool normalMapped = material.normalTexture >= 0 && mesh.tangents.size() == mesh.positions.size();
+        if (hasUvs && (material.baseColorTexture >= 0 || material.emissionTexture >= 0 || material.masked() ||
+                       normalMapped || material.metallicRoughnessTexture >= 0))
+            g.uvs = mesh.uvs;
+        if (material.masked()) {
+            if (!hasUvs && material.alphaTexture >= 0)
+                spdlog::warn("object '{}': alpha-masked material '{}' but no texture coordinates: the mask is its "
+                             "factor alone", object.name, material.name);
+            g.alphaTexture = hasUvs ? textureCopy(material.alphaTexture) : nullptr;
+            g.alpha = g.alphaTexture || material.alpha < 1.0f ? material.alpha : 1.0f;
+            g.alphaCutoff = material.alphaCutoff;
+            if (!hasUvs) g.uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
+        }
+        if (normalMapped && hasUvs) {
+            g.normalTexture = textureCopy(material.normalTexture);
+            g.normalScale = material.normalScale;
+            const glm::mat3 linear(worldFromObject);
+            g.tangents.reserve(mesh.tangents.size());
+            for (const glm::vec4& tn : mesh.tangents) g.tangents.push_back(glm::vec4(linear * glm::vec3(tn), tn.w));
+        }
         g.triangles.resize(mesh.triangleCount());
         std::memcpy(g.triangles.data(), mesh.indices.data(), g.triangles.size() * sizeof(glm::uvec3));
         computeFaceData(g);
-        if (hasNormals && isFlat(g)) g.normals.clear();
+        if (hasNormals && isFlat(g) && !g.normalTexture) g.normals.clear();
         out.m_geometries.push_back(std::move(g));
     }
 

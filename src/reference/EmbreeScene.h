@@ -8,12 +8,14 @@
 // rectangle is only there for rays arriving on its emitting side: from behind, rays pass through it;
 // a two-sided light's rectangle is there from both sides.
 #include "core/Error.h"
+#include "reference/TextureLookup.h"
 #include "scene/Scene.h"
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -76,6 +78,15 @@ struct SceneGeometry {
     // Unit normal of the counter-clockwise winding (OpenGL's front face), and area in m^2.
     std::vector<glm::vec3> faceNormals;
     std::vector<float> areas;
+    // Alpha masking (Material::masked): an intersection filter rejects hits where the coverage
+    // alpha * coverage texel (bilinear, level 0, TextureLookup.h) is below alphaCutoff, for every ray.
+    std::shared_ptr<const Image> alphaTexture;  // null: the factor alone
+    float alpha = 1.0f;
+    float alphaCutoff = 0.0f;  // 0: no filter
+    // Normal map (Material::normalTexture): world tangents (xyz, w the bitangent sign) per vertex.
+    std::shared_ptr<const Image> normalTexture;
+    float normalScale = 1.0f;
+    std::vector<glm::vec4> tangents;
 };
 
 // A point on a surface found by a ray.
@@ -120,7 +131,29 @@ public:
             }
         }
         s.uv = g.uvs.empty() ? glm::vec2(0.0f) : w * g.uvs[t.x] + u * g.uvs[t.y] + v * g.uvs[t.z];
+        if (g.normalTexture && !g.tangents.empty() && !g.uvs.empty())
+            s.shadingNormal = normalMapped(g, t, w, u, v, s.shadingNormal, s.uv);
         return s;
+    }
+
+    // The tangent-space normal map applied to the front-side shading normal n, exactly as
+    // shaders/common/scene.glsl's materialNormal: normalize(T x + B y + N z), T orthogonalised
+    // against n, B = w cross(n, T), the map's x and y times the normal scale.
+    static glm::vec3 normalMapped(const SceneGeometry& g, glm::uvec3 t, float w, float u, float v, glm::vec3 n,
+                                  glm::vec2 uv) noexcept {
+        const glm::vec4 tw = w * g.tangents[t.x] + u * g.tangents[t.y] + v * g.tangents[t.z];
+        if (tw.w == 0.0f) return n;
+        glm::vec3 tangent = glm::vec3(tw) - n * glm::dot(n, glm::vec3(tw));
+        const float len = glm::length(tangent);
+        if (!(len > 0.0f)) return n;
+        tangent /= len;
+        const glm::vec3 bitangent = tw.w * glm::cross(n, tangent);
+        glm::vec3 m = lookupBilinearRepeat(*g.normalTexture, uv) * 2.0f - 1.0f;
+        m.x *= g.normalScale;
+        m.y *= g.normalScale;
+        const glm::vec3 mapped = tangent * m.x + bitangent * m.y + n * m.z;
+        const float ml = glm::length(mapped);
+        return ml > 0.0f ? mapped / ml : n;
     }
 
 private:

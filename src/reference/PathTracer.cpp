@@ -159,6 +159,9 @@ std::vector<PathTracer::Shading> PathTracer::gatherShading(const Scene& scene, c
             s.twoSided = m.twoSided;
             s.diffuseAlbedo = m.baseColor * (1.0f - m.metallic);
             s.lambertian = m.specularF0 == 0.0f && m.metallic == 0.0f;
+            if (m.metallicRoughnessTexture >= 0 && !g.uvs.empty())
+                s.metallicRoughnessTexture = &scene.textures[static_cast<size_t>(m.metallicRoughnessTexture)].image;
+            s.normalMapped = g.normalTexture != nullptr;
         }
         s.emissive = maxComponent(s.emitted) > 0.0f;
     }
@@ -193,9 +196,11 @@ PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& settings, E
             k.emitterPerTriangle = k.emitter && k.emitter->kind == LightSampler::Kind::Triangle;
         }
         // Textured emitters vary over their rectangle: their hits go through scatter().
-        k.shades = sh.texture == nullptr && sh.emitterTexture == nullptr && sh.emissionTexture == nullptr &&
+        // So do normal-mapped and metallic-roughness-textured materials (surface() and the texel).
+        const bool plain = sh.texture == nullptr && !sh.normalMapped && sh.metallicRoughnessTexture == nullptr;
+        k.shades = plain && sh.emitterTexture == nullptr && sh.emissionTexture == nullptr &&
                    (sh.lambertian || sh.absorber);
-        k.shadesDiffuseOnly = sh.texture == nullptr && m_settings.diffuseOnly;
+        k.shadesDiffuseOnly = plain && m_settings.diffuseOnly;
         k.emissive = sh.emissive;
         k.twoSided = sh.twoSided;
         k.absorber = sh.absorber;
@@ -241,9 +246,19 @@ PathTracer::Step PathTracer::scatter(PathState& path, const HitRecord& hit, Shad
     // Pure Lambert (the built-in scenes, and every vertex after the first under --diffuse-only)
     // takes a short path without the general BRDF.
     const bool lambert = sh.lambertian || (m_settings.diffuseOnly && vertex >= 2);
-    const glm::vec3 albedo = sh.diffuseAlbedo * texel;
+    glm::vec3 albedo = sh.diffuseAlbedo * texel;
     const glm::vec3 wo = frame.toLocal(-path.direction);
-    const Bsdf bsdf = lambert ? Bsdf() : Bsdf(*sh.material, sh.material->baseColor * texel, false);
+    const Material* material = sh.material;
+    Material textured;  // the factors times the metallic-roughness texel (glTF: G roughness, B metallic)
+    if (sh.metallicRoughnessTexture) {
+        const glm::vec3 mr = lookupBilinearRepeat(*sh.metallicRoughnessTexture, sp.uv);
+        textured = *sh.material;
+        textured.roughness *= mr.g;
+        textured.metallic *= mr.b;
+        material = &textured;
+        albedo = textured.baseColor * (1.0f - textured.metallic) * texel;
+    }
+    const Bsdf bsdf = lambert ? Bsdf() : Bsdf(*material, material->baseColor * texel, false);
 
     // Next-event estimation: one light source, one shadow ray (traced by the caller). Under
     // --indirect-only the first reflection's direct light is not wanted, so no ray is spent on it.

@@ -112,6 +112,8 @@ public:
         // Materials with an emission texture: emitted times its bilinear texel at the hit's uv.
         const Image* emissionTexture = nullptr;
         glm::vec3 diffuseAlbedo{0.0f};       // baseColor * (1 - metallic), before the texture
+        const Image* metallicRoughnessTexture = nullptr;  // G scales roughness, B metallic (glTF), or null
+        bool normalMapped = false;           // EmbreeScene::surface perturbs the shading normal
         bool emissive = false;
         bool twoSided = false;
         bool absorber = false;    // area-light rectangles: emit, never reflect (hit from the front only,

@@ -46,7 +46,15 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
     std::vector<uint32_t> indices;
     std::vector<GLint> meshBaseVertex;
     std::vector<GLuint> meshFirstIndex;
+    // Tangents (normal maps) live in their own stream so the 32-byte Vertex, which some passes pull
+    // themselves, keeps its layout; without any normal-mapped mesh it is one zero tangent, stride 0.
+    bool anyTangents = false;
+    for (const Mesh& mesh : scene.meshes) anyTangents = anyTangents || !mesh.tangents.empty();
+    std::vector<glm::vec4> tangents;
     for (const Mesh& mesh : scene.meshes) {
+        if (anyTangents)
+            for (size_t i = 0; i < mesh.positions.size(); ++i)
+                tangents.push_back(i < mesh.tangents.size() ? mesh.tangents[i] : glm::vec4(0.0f));
         meshBaseVertex.push_back(static_cast<GLint>(vertices.size()));
         meshFirstIndex.push_back(static_cast<GLuint>(indices.size()));
         for (size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -61,6 +69,8 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
     BOUNCE_CHECK(!vertices.empty() && !indices.empty(), "scene '{}' has no geometry", scene.name);
     m_vertices = gl::Buffer::create("scene.vertices", vertices.size() * sizeof(Vertex), vertices.data(), 0);
     m_indices = gl::Buffer::create("scene.indices", indices.size() * sizeof(uint32_t), indices.data(), 0);
+    if (tangents.empty()) tangents.emplace_back(0.0f);
+    m_tangents = gl::Buffer::create("scene.tangents", tangents.size() * sizeof(glm::vec4), tangents.data(), 0);
 
     std::vector<uint32_t> ids(scene.objects.size());
     for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
@@ -91,6 +101,7 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
     glVertexArrayVertexBuffer(vao, 0, m_vertices.id(), 0, sizeof(Vertex));
     glVertexArrayVertexBuffer(vao, 1, m_instanceIds.id(), 0, sizeof(uint32_t));
     glVertexArrayBindingDivisor(vao, 1, 1);
+    glVertexArrayVertexBuffer(vao, 2, m_tangents.id(), 0, anyTangents ? sizeof(glm::vec4) : 0);
     glVertexArrayElementBuffer(vao, m_indices.id());
     auto attrib = [&](GLuint loc, GLint n, GLuint offset) {
         glEnableVertexArrayAttrib(vao, loc);
@@ -100,6 +111,9 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
     attrib(ATTR_POSITION, 3, offsetof(Vertex, position));
     attrib(ATTR_NORMAL, 3, offsetof(Vertex, normal));
     attrib(ATTR_UV, 2, offsetof(Vertex, uv));
+    glEnableVertexArrayAttrib(vao, ATTR_TANGENT);
+    glVertexArrayAttribFormat(vao, ATTR_TANGENT, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, ATTR_TANGENT, 2);
     glEnableVertexArrayAttrib(vao, ATTR_OBJECT_INDEX);
     glVertexArrayAttribIFormat(vao, ATTR_OBJECT_INDEX, 1, GL_UNSIGNED_INT, 0);
     glVertexArrayAttribBinding(vao, ATTR_OBJECT_INDEX, 1);
@@ -124,6 +138,8 @@ SceneGpu::SceneGpu(const Scene& scene) : m_scene(&scene) {
         g.baseColor = glm::vec4(m.baseColor, useTexture(m.baseColorTexture));
         g.emission = glm::vec4(m.emission, useTexture(m.emissionTexture));
         g.params = glm::vec4(m.roughness, m.metallic, m.specularF0, m.twoSided ? 1.0f : 0.0f);
+        g.alpha = glm::vec4(m.masked() ? m.alphaCutoff : 0.0f, m.alpha, m.masked() ? useTexture(m.alphaTexture) : -1.0f, 0.0f);
+        g.maps = glm::vec4(useTexture(m.normalTexture), m.normalScale, useTexture(m.metallicRoughnessTexture), 0.0f);
         materials.push_back(g);
     }
     int texW = 1, texH = 1;

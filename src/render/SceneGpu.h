@@ -49,7 +49,7 @@ private:
     float m_time = -1.0f;
     std::vector<Light> m_lights;
     std::vector<gpu::ObjectGpu> m_objectData;
-    gl::Buffer m_vertices, m_indices, m_instanceIds, m_objects, m_materials, m_commands;
+    gl::Buffer m_vertices, m_tangents, m_indices, m_instanceIds, m_objects, m_materials, m_commands;
     gl::VertexArray m_vao;
     gl::Texture m_textures;
     size_t m_commandOffset[3] = {0, 0, 0};

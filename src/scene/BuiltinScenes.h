@@ -17,6 +17,7 @@ Expected<Scene> buildCornellBoxDynamic(const SceneParams& params);
 Expected<Scene> buildFurnace(const SceneParams& params);
 Expected<Scene> buildTwoRooms(const SceneParams& params);
 Expected<Scene> buildAtrium(const SceneParams& params);
+Expected<Scene> buildCourtyard(const SceneParams& params);
 Expected<Scene> buildCornellBoxRotating(const SceneParams& params);
 Expected<Scene> buildIndirectLight(const SceneParams& params);
 Expected<Scene> buildAreaScreen(const SceneParams& params);

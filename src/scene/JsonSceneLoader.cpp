@@ -30,6 +30,10 @@ using nlohmann::json;
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+// glTF 2.0's default alphaCutoff (material.alphaCutoff), used for "mask" without one and for "blend".
+constexpr float kDefaultAlphaCutoff = 0.5f;
+// A normal map's xy scale beyond this would tilt every normal to the horizon: a typo, not a material.
+constexpr float kMaxNormalScale = 10.0f;
 // Upper bound of an area light's texture frame rate (frames per second): far above any video rate,
 // it only catches typos such as a period given in milliseconds.
 constexpr float kMaxTextureFrameRate = 1e4f;
@@ -276,7 +280,8 @@ private:
         BOUNCE_TRY_VOID(expectObject(j, p, what));
         BOUNCE_TRY_VOID(checkKeys(j, p, what,
                                   {"baseColor", "baseColorTexture", "emission", "emissionTexture", "roughness", "metallic",
-                                   "specularF0", "twoSided"}));
+                                   "specularF0", "twoSided", "alphaMode", "alphaCutoff", "alpha", "alphaTexture",
+                                   "normalTexture", "normalScale", "metallicRoughnessTexture"}));
         Material m;
         m.name = name;
         // Two-sided unless the file says otherwise, like the OBJ and PLY materials a JSON material
@@ -306,16 +311,68 @@ private:
         if (j.contains("emissionTexture")) {
             BOUNCE_TRY(m.emissionTexture, materialTexture(j["emissionTexture"], p + "/emissionTexture", what, "emission"));
         }
+        BOUNCE_TRY_VOID(alphaAndMaps(j, p, what, m));
         return m;
+    }
+
+    // Alpha masking, normal and metallic-roughness maps (docs/scene.md "JSON scene files"), read as
+    // glTF defines them: MASK keeps texels whose coverage reaches alphaCutoff, BLEND is masked at 0.5.
+    Expected<void> alphaAndMaps(const json& j, const std::string& p, const std::string& what, Material& m) {
+        std::string mode = "opaque";
+        if (j.contains("alphaMode")) {
+            BOUNCE_TRY(mode, text(j["alphaMode"], p + "/alphaMode"));
+            if (mode != "opaque" && mode != "mask" && mode != "blend")
+                return err(p + "/alphaMode", "alphaMode \"{}\": expected \"opaque\", \"mask\" or \"blend\"", mode);
+        }
+        for (const char* key : {"alphaCutoff", "alpha", "alphaTexture"})
+            if (j.contains(key) && mode == "opaque")
+                return err(p + "/" + key, "{} needs \"alphaMode\": \"mask\" (or \"blend\")", key);
+        if (mode != "opaque") {
+            m.alphaCutoff = kDefaultAlphaCutoff;
+            if (j.contains("alphaCutoff")) {
+                BOUNCE_TRY(m.alphaCutoff, number(j["alphaCutoff"], p + "/alphaCutoff", 0.0f, 1.0f));
+            }
+            if (mode == "blend") {
+                if (j.contains("alphaCutoff")) return err(p + "/alphaCutoff", "alphaCutoff applies to \"mask\" only");
+                spdlog::warn("{}: {}: alphaMode blend is rendered as mask with alphaCutoff {} (no blending)", origin(p),
+                             what, kDefaultAlphaCutoff);
+            }
+            if (j.contains("alpha")) {
+                BOUNCE_TRY(m.alpha, number(j["alpha"], p + "/alpha", 0.0f, 1.0f));
+            }
+            if (j.contains("alphaTexture")) {
+                BOUNCE_TRY(m.alphaTexture, materialTexture(j["alphaTexture"], p + "/alphaTexture", what, "alpha factor",
+                                                           TextureUse::Coverage));
+            } else if (j.contains("baseColorTexture")) {
+                BOUNCE_TRY(m.alphaTexture, materialTexture(j["baseColorTexture"], p + "/baseColorTexture", what,
+                                                           "alpha factor", TextureUse::Alpha));
+            }
+        }
+        if (j.contains("normalTexture")) {
+            BOUNCE_TRY(m.normalTexture, materialTexture(j["normalTexture"], p + "/normalTexture", what,
+                                                        "interpolated normal", TextureUse::Linear));
+        }
+        if (j.contains("normalScale")) {
+            BOUNCE_TRY(m.normalScale, number(j["normalScale"], p + "/normalScale", -kMaxNormalScale, kMaxNormalScale));
+        }
+        if (j.contains("metallicRoughnessTexture")) {
+            BOUNCE_TRY(m.metallicRoughnessTexture,
+                       materialTexture(j["metallicRoughnessTexture"], p + "/metallicRoughnessTexture", what,
+                                       "roughness and metallic", TextureUse::Linear));
+        }
+        return {};
     }
 
     // A material's texture file: its index in Scene::textures, or -1 with a warning when it is missing
     // or unreadable (the material then keeps its `fallback` value alone).
-    Expected<int> materialTexture(const json& j, const std::string& p, const std::string& what, const char* fallback) {
+    Expected<int> materialTexture(const json& j, const std::string& p, const std::string& what, const char* fallback,
+                                  TextureUse use = TextureUse::SrgbColour) {
         BOUNCE_TRY(const std::string rel, text(j, p));
         const fs::path file = m_path.parent_path() / rel;
-        Expected<Image> image = fs::exists(file) ? readImage(file)
-                                                 : Expected<Image>(makeError("{}: file not found", file.string()));
+        Expected<Image> image = use == TextureUse::SrgbColour
+                                    ? (fs::exists(file) ? readImage(file)
+                                                        : Expected<Image>(makeError("{}: file not found", file.string())))
+                                    : readTextureFile(file, use);
         if (!image.ok()) {
             spdlog::warn("{}: {}: texture unusable, using the {}: {}", origin(p), what, fallback, image.error().message);
             return -1;

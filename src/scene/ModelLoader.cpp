@@ -7,6 +7,7 @@
 #include "scene/PlyCheck.h"
 
 #include <assimp/DefaultIOSystem.h>
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
@@ -14,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 #include <stb/stb_image.h>
 
 #include <algorithm>
@@ -42,6 +44,8 @@ namespace {
 constexpr float kLumensPerWatt = 683.0f;
 // glTF's dielectric reflectance at normal incidence (glTF 2.0 metallic-roughness model).
 constexpr float kGltfDielectricF0 = 0.04f;
+// glTF 2.0 material.alphaCutoff's default (section 5.19); also the cutoff bounce uses for BLEND.
+constexpr float kGltfDefaultAlphaCutoff = 0.5f;
 // Default sun for model files without lights: irradiance on a surface facing it, about 1 W/(m^2 sr) of
 // radiance off an 0.8 albedo surface facing it (0.8 * 4 / pi), well exposed with ACES at 0 EV.
 constexpr glm::vec3 kDefaultSunIrradiance{4.0f};  // W/m^2
@@ -88,6 +92,26 @@ Image decodeSrgb8(const unsigned char* pixels, int width, int height, int channe
             const unsigned char* p = pixels + (static_cast<size_t>(y) * width + x) * channels;
             const auto c = [&](int k) { return srgbDecode(p[std::min(k, channels - 1)] / 255.0f); };
             image.at(x, y) = channels >= 3 ? glm::vec3(c(0), c(1), c(2)) : glm::vec3(c(0));
+        }
+    return image;
+}
+
+// Decodes 8-bit pixels of `channels` channels for `use`: sRGB colour (existing decodeSrgb8), the alpha
+// channel replicated to RGB, or linear RGB. Alpha of an image without one is 1 (glTF: opaque).
+Image decodeFor(TextureUse use, const unsigned char* pixels, int width, int height, int channels) {
+    if (use == TextureUse::SrgbColour) return decodeSrgb8(pixels, width, height, channels);
+    Image image(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const unsigned char* p = pixels + (static_cast<size_t>(y) * width + x) * channels;
+            const auto c = [&](int k) { return p[std::min(k, channels - 1)] / 255.0f; };
+            const bool hasAlpha = channels == 2 || channels == 4;
+            if (use == TextureUse::Alpha)
+                image.at(x, y) = glm::vec3(hasAlpha ? p[channels - 1] / 255.0f : 1.0f);
+            else if (use == TextureUse::Coverage)
+                image.at(x, y) = glm::vec3(hasAlpha ? p[channels - 1] / 255.0f : c(0));
+            else
+                image.at(x, y) = channels >= 3 ? glm::vec3(c(0), c(1), c(2)) : glm::vec3(c(0));
         }
     return image;
 }
@@ -142,7 +166,7 @@ private:
     std::string m_path, m_text;
 };
 
-Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what) {
+Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what, TextureUse use) {
     if (tex->mHeight == 0) {  // compressed file bytes (PNG, JPEG) of length mWidth
         int w = 0, h = 0, n = 0;
         const auto* bytes = reinterpret_cast<const stbi_uc*>(tex->pcData);
@@ -153,20 +177,70 @@ Expected<Image> decodeEmbedded(const aiTexture* tex, const std::string& what) {
         unsigned char* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(tex->pcData),
                                                     static_cast<int>(tex->mWidth), &w, &h, &n, 0);
         if (!data) return makeError("{}: cannot decode embedded image ({})", what, stbi_failure_reason());
-        Image image = decodeSrgb8(data, w, h, n);
+        Image image = decodeFor(use, data, w, h, n);
         stbi_image_free(data);
         return image;
     }
     if (tex->mWidth > static_cast<unsigned>(kMaxImageSide) || tex->mHeight > static_cast<unsigned>(kMaxImageSide))
         return makeError("{}: embedded image is {}x{}; images may be at most {} pixels per side", what, tex->mWidth,
                          tex->mHeight, kMaxImageSide);
-    std::vector<unsigned char> rgb(static_cast<size_t>(tex->mWidth) * tex->mHeight * 3);
+    std::vector<unsigned char> rgba(static_cast<size_t>(tex->mWidth) * tex->mHeight * 4);
     for (size_t i = 0; i < static_cast<size_t>(tex->mWidth) * tex->mHeight; ++i) {
-        rgb[3 * i] = tex->pcData[i].r;
-        rgb[3 * i + 1] = tex->pcData[i].g;
-        rgb[3 * i + 2] = tex->pcData[i].b;
+        rgba[4 * i] = tex->pcData[i].r;
+        rgba[4 * i + 1] = tex->pcData[i].g;
+        rgba[4 * i + 2] = tex->pcData[i].b;
+        rgba[4 * i + 3] = tex->pcData[i].a;
     }
-    return decodeSrgb8(rgb.data(), static_cast<int>(tex->mWidth), static_cast<int>(tex->mHeight), 3);
+    return decodeFor(use, rgba.data(), static_cast<int>(tex->mWidth), static_cast<int>(tex->mHeight), 4);
+}
+
+// A texture file's pixels for `use`. EXR (and anything stb cannot read as 8 bits) goes through
+// readImage: linear values, no alpha channel.
+Expected<Image> readTextureFileImpl(const fs::path& file, TextureUse use) {
+    if (!fs::exists(file)) return makeError("{}: file not found", file.string());
+    if (use == TextureUse::SrgbColour || lowerExtension(file) == ".exr") {
+        BOUNCE_TRY(Image image, readImage(file));
+        if (use == TextureUse::Alpha) image = Image(image.width(), image.height(), glm::vec3(1.0f));
+        // Coverage of an EXR: its first channel, as for grey masks.
+        if (use == TextureUse::Coverage)
+            for (glm::vec3& px : image.pixels()) px = glm::vec3(px.r);
+        return image;
+    }
+    int w = 0, h = 0, n = 0;
+    if (stbi_info(file.c_str(), &w, &h, &n) && (w > kMaxImageSide || h > kMaxImageSide))
+        return makeError("{}: image is {}x{}; images may be at most {} pixels per side", file.string(), w, h,
+                         kMaxImageSide);
+    unsigned char* data = stbi_load(file.c_str(), &w, &h, &n, 0);
+    if (!data) return makeError("{}: cannot decode image ({})", file.string(), stbi_failure_reason());
+    Image image = decodeFor(use, data, w, h, n);
+    stbi_image_free(data);
+    return image;
+}
+
+// glTF extensions bounce reads (docs/scene.md "glTF 2.0"); any other one the file lists in
+// extensionsUsed gets one warning line: assimp 5.2 drops most of them silently.
+constexpr std::array<std::string_view, 2> kSupportedGltfExtensions = {"KHR_lights_punctual",
+                                                                       "KHR_materials_emissive_strength"};
+
+void warnUnsupportedGltfExtensions(const fs::path& path, const std::string& where) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string json = bytes;
+    constexpr size_t kGlbHeader = 12, kChunkHeader = 8;  // glTF 2.0 section 4.4 (GLB file format)
+    if (bytes.size() >= kGlbHeader + kChunkHeader && bytes.compare(0, 4, "glTF") == 0) {
+        uint32_t length = 0;
+        std::memcpy(&length, bytes.data() + kGlbHeader, sizeof(length));
+        json = bytes.substr(kGlbHeader + kChunkHeader, std::min<size_t>(length, bytes.size() - kGlbHeader - kChunkHeader));
+    }
+    const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
+    if (!doc.is_object() || !doc.contains("extensionsUsed") || !doc["extensionsUsed"].is_array()) return;
+    for (const nlohmann::json& e : doc["extensionsUsed"]) {
+        if (!e.is_string()) continue;
+        const std::string name = e.get<std::string>();
+        if (std::find(kSupportedGltfExtensions.begin(), kSupportedGltfExtensions.end(), name) ==
+            kSupportedGltfExtensions.end())
+            spdlog::warn("{}: glTF extension {} is not supported; the model is rendered without it", where, name);
+    }
 }
 
 class Importer {
@@ -202,8 +276,10 @@ private:
                                                                                 : fmt::format("material-{}", index);
         m.name = m_path.filename().string() + ":" + m.name;
         aiColor4D colour;
-        if (am->Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS || am->Get(AI_MATKEY_COLOR_DIFFUSE, colour) == AI_SUCCESS)
+        if (am->Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS || am->Get(AI_MATKEY_COLOR_DIFFUSE, colour) == AI_SUCCESS) {
             m.baseColor = {colour.r, colour.g, colour.b};
+            if (m_format == Format::Gltf) m.alpha = std::clamp(colour.a, 0.0f, 1.0f);
+        }
         aiColor3D emissive;
         if (am->Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS) {
             m.emission = toGlm(emissive);
@@ -231,24 +307,56 @@ private:
         // glTF's emissiveTexture (sRGB, multiplied by emissiveFactor) and MTL's map_Ke.
         if (am->GetTexture(aiTextureType_EMISSIVE, 0, &texPath) == AI_SUCCESS)
             m.emissionTexture = texture(texPath.C_Str(), m.name, "emission factor");
+        if (m_format == Format::Gltf) gltfMaterial(am, m);
         return m;
     }
 
+    // glTF's alpha mode, normal and metallic-roughness textures (docs/scene.md "glTF 2.0").
+    void gltfMaterial(const aiMaterial* am, Material& m) {
+        aiString mode;
+        if (am->Get(AI_MATKEY_GLTF_ALPHAMODE, mode) == AI_SUCCESS && std::string_view(mode.C_Str()) != "OPAQUE") {
+            m.alphaCutoff = kGltfDefaultAlphaCutoff;
+            float cutoff = 0.0f;
+            if (std::string_view(mode.C_Str()) == "MASK") {
+                if (am->Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff) == AI_SUCCESS) m.alphaCutoff = std::clamp(cutoff, 0.0f, 1.0f);
+            } else {
+                spdlog::warn("{}: material '{}': alphaMode {} is rendered as MASK with alphaCutoff {} (no blending)",
+                             where(), m.name, mode.C_Str(), kGltfDefaultAlphaCutoff);
+            }
+            aiString texPath;
+            if (am->GetTexture(aiTextureType_BASE_COLOR, 0, &texPath) == AI_SUCCESS ||
+                am->GetTexture(aiTextureType_DIFFUSE, 0, &texPath) == AI_SUCCESS)
+                m.alphaTexture = texture(texPath.C_Str(), m.name, "alpha factor (no mask)", TextureUse::Alpha);
+        }
+        aiString texPath;
+        if (am->GetTexture(aiTextureType_NORMALS, 0, &texPath) == AI_SUCCESS) {
+            m.normalTexture = texture(texPath.C_Str(), m.name, "interpolated normal", TextureUse::Linear);
+            float scale = 1.0f;
+            if (am->Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), scale) == AI_SUCCESS && std::isfinite(scale))
+                m.normalScale = scale;
+        }
+        if (am->GetTexture(AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, &texPath) == AI_SUCCESS ||
+            am->GetTexture(aiTextureType_METALNESS, 0, &texPath) == AI_SUCCESS)
+            m.metallicRoughnessTexture = texture(texPath.C_Str(), m.name, "roughness and metallic factors", TextureUse::Linear);
+    }
+
     // Index of the texture in the scene, or -1 (with a warning) when it cannot be read.
-    int texture(const std::string& ref, const std::string& materialName, const char* fallback) {
-        const auto cached = m_textures.find(ref);
+    int texture(const std::string& ref, const std::string& materialName, const char* fallback,
+                TextureUse use = TextureUse::SrgbColour) {
+        const std::string key = ref + "#" + std::to_string(static_cast<int>(use));
+        const auto cached = m_textures.find(key);
         if (cached != m_textures.end()) return cached->second;
         Expected<Image> image = Error{};
         std::string name;
         if (const aiTexture* embedded = m_ai->GetEmbeddedTexture(ref.c_str())) {
             name = fmt::format("{}:{}", m_path.string(), ref);
-            image = decodeEmbedded(embedded, name);
+            image = decodeEmbedded(embedded, name, use);
         } else {
             std::string rel = ref;
             std::replace(rel.begin(), rel.end(), '\\', '/');  // MTL files written on Windows
             const fs::path file = m_path.parent_path() / rel;
             name = file.string();
-            image = fs::exists(file) ? readImage(file) : Expected<Image>(makeError("{}: file not found", name));
+            image = readTextureFileImpl(file, use);
         }
         int index = -1;
         if (image.ok()) {
@@ -258,7 +366,7 @@ private:
             spdlog::warn("{}: material '{}': texture unusable, using the {}: {}", where(), materialName, fallback,
                          image.error().message);
         }
-        m_textures[ref] = index;
+        m_textures[key] = index;
         return index;
     }
 
@@ -384,7 +492,7 @@ private:
     uint32_t m_meshBase = 0, m_materialBase = 0;
     std::vector<bool> m_meshUsable;
     size_t m_instances = 0;
-    std::map<std::string, int> m_textures;
+    std::map<std::string, int> m_textures;  // (reference, use) -> Scene::textures index or -1
     ModelImportResult m_result;
 };
 
@@ -477,6 +585,7 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
             if (!in || c != '{')
                 return makeError("{}: model '{}': not a glTF file (its JSON does not start with '{{')", where, path.string());
         }
+        warnUnsupportedGltfExtensions(path, fmt::format("{}: model '{}'", where, path.string()));
     }
     if (format == Format::Ply) {
         // assimp 5.2 hangs or crashes on some malformed PLY files: bounce checks the structure first.
@@ -526,6 +635,8 @@ Expected<ModelImportResult> appendModel(Scene& scene, const fs::path& path, cons
     Importer run(scene, path, placement, format);
     return run.run(ai);
 }
+
+Expected<Image> readTextureFile(const fs::path& file, TextureUse use) { return readTextureFileImpl(file, use); }
 
 Expected<Scene> loadModelScene(const fs::path& path) {
     Scene scene;

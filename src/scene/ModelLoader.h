@@ -35,4 +35,13 @@ Expected<ModelImportResult> appendModel(Scene& scene, const std::filesystem::pat
 // model and a default sun when the file has neither lights nor emissive materials. Not finalized.
 Expected<Scene> loadModelScene(const std::filesystem::path& path);
 
+// How a material reads a texture file's channels (glTF 2.0 section 3.9: base colour and emission are
+// sRGB; normal, metallic-roughness and the base colour's alpha are linear). Alpha: the alpha channel
+// in RGB (1 without one, glTF's rule); Coverage: the alpha channel, or the first channel of an image
+// without alpha (JSON's alphaTexture, a grey mask).
+enum class TextureUse { SrgbColour, Alpha, Coverage, Linear };
+
+// A texture file's pixels for `use` (PNG/JPEG through stb_image; EXR as stored, no alpha).
+Expected<Image> readTextureFile(const std::filesystem::path& file, TextureUse use);
+
 }  // namespace bounce

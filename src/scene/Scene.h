@@ -32,6 +32,11 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;
+    // Tangent frames for normal maps: xyz the unit tangent along +u, w = +-1 such that the bitangent
+    // w * cross(normal, tangent) points along -v (up the image, the +y of a glTF normal map). Empty
+    // or one per position; finalizeScene fills them from the uvs for meshes a normal-mapped material
+    // uses (computeTangents).
+    std::vector<glm::vec4> tangents;
     std::vector<uint32_t> indices;  // 3 per triangle
 
     size_t triangleCount() const { return indices.size() / 3; }
@@ -53,7 +58,22 @@ struct Material {
     float metallic = 0.0f;
     float specularF0 = 0.0f;         // dielectric reflectance at normal incidence (0 = pure Lambert)
     bool twoSided = false;           // shade back faces with the flipped normal
+    // Alpha masking (glTF alphaMode MASK): the surface exists only where coverage >= alphaCutoff,
+    // coverage = alpha * alphaTexture (its red channel, linear; glTF: the base-colour texture's alpha).
+    // alphaCutoff 0 is opaque (no texel is below it); glTF BLEND is loaded as MASK at 0.5.
+    float alpha = 1.0f;              // coverage factor in [0, 1] (glTF baseColorFactor.a)
+    int alphaTexture = -1;           // index into Scene::textures: coverage in every channel
+    float alphaCutoff = 0.0f;        // in [0, 1]; 0: opaque
+    int normalTexture = -1;          // tangent-space normal map, linear RGB = (n + 1) / 2 (glTF normalTexture)
+    float normalScale = 1.0f;        // scales the map's x and y (glTF normalTexture.scale)
+    int metallicRoughnessTexture = -1;  // linear: G multiplies roughness, B metallic (glTF)
+
+    bool masked() const { return alphaCutoff > 0.0f && (alpha < 1.0f || alphaTexture >= 0); }
 };
+
+// Coverage at a texel value `sample` (the alpha texture's red channel, 1 without one); a masked
+// material's surface is absent where this is false. Shared by every renderer.
+inline bool coveredAt(const Material& m, float sample) { return m.alpha * sample >= m.alphaCutoff; }
 
 // Keyframed rigid transform. Translation is interpolated linearly or with Catmull-Rom splines,
 // rotation by slerp, scale linearly. Times are seconds; outside the key range the ends are held,

@@ -51,6 +51,12 @@ const std::vector<BuiltinEntry>& registry() {
           "Sponza-class stand-in",
           {{"triangles", "100000: triangle budget; the tessellation lands within 10 %"}}},
          buildAtrium},
+        {{"courtyard",
+          "The atrium with alpha-masked foliage (bushes in planters, hanging ivy; a procedural leaf mask) at "
+          "Sponza-class size, lit by the sun or a sky-sized area light over the open roof",
+          {{"triangles", "150000: triangle budget (foliage included); the tessellation lands within 10 %"},
+           {"light", "sun: the atrium's sun; sky: a 12 m x 20 m area light over the open roof instead"}}},
+         buildCourtyard},
         {{"indirect-light",
           "Closed 4 m x 2.6 m x 4 m room, albedo 0.9 everywhere, lit only by a daylight window (area light) on "
           "the right that the camera does not see; a 0.5 m box turning on the floor, 8 s per turn; van de Hoef "

@@ -44,4 +44,7 @@ const SceneSettingCheck& sceneSettingCheck();
 // computed (area-weighted vertex normals).
 Expected<void> finalizeScene(Scene& scene);
 
+// Fills mesh.tangents (Scene.h) from its positions, normals and uvs (uvs required).
+void computeTangents(Mesh& mesh);
+
 }  // namespace bounce

@@ -178,6 +178,39 @@ Expected<void> checkCamera(Camera& camera, const std::string& scene) {
 
 }  // namespace
 
+void computeTangents(Mesh& mesh) {
+    // Per-triangle dp/du and dp/dv accumulated at the corners, area-weighted (the cross-product
+    // denominator), then Gram-Schmidt against the vertex normal: the method of Lengyel (2001), which
+    // assimp's aiProcess_CalcTangentSpace also uses; MikkTSpace differs only in how it splits seams.
+    const size_t n = mesh.positions.size();
+    std::vector<glm::vec3> dpdu(n, glm::vec3(0.0f)), dpdv(n, glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        const glm::vec3 e1 = mesh.positions[b] - mesh.positions[a], e2 = mesh.positions[c] - mesh.positions[a];
+        const glm::vec2 d1 = mesh.uvs[b] - mesh.uvs[a], d2 = mesh.uvs[c] - mesh.uvs[a];
+        const float det = d1.x * d2.y - d2.x * d1.y;
+        if (!(std::abs(det) > 0.0f)) continue;  // no uv parametrisation on this triangle
+        const float sign = det > 0.0f ? 1.0f : -1.0f;  // unnormalised: each triangle weighs by its area
+        const glm::vec3 u = sign * (e1 * d2.y - e2 * d1.y), v = sign * (e2 * d1.x - e1 * d2.x);
+        for (uint32_t k : {a, b, c}) {
+            dpdu[k] += u;
+            dpdv[k] += v;
+        }
+    }
+    mesh.tangents.assign(n, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+    for (size_t i = 0; i < n; ++i) {
+        const glm::vec3 nn = i < mesh.normals.size() ? mesh.normals[i] : glm::vec3(0.0f, 1.0f, 0.0f);
+        glm::vec3 t = dpdu[i] - nn * glm::dot(nn, dpdu[i]);
+        if (!(glm::length(t) > 0.0f)) {  // no uvs here: any tangent perpendicular to the normal
+            t = glm::cross(nn, std::abs(nn.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f));
+        }
+        t = glm::normalize(t);
+        // The bitangent w * cross(n, t) points up the image (-v): glTF's +y of a normal map.
+        const float w = glm::dot(glm::cross(nn, t), -dpdv[i]) < 0.0f ? -1.0f : 1.0f;
+        mesh.tangents[i] = glm::vec4(t, w);
+    }
+}
+
 Expected<void> finalizeScene(Scene& scene) {
     const std::string& s = scene.source.empty() ? scene.name : scene.source;
     if (scene.objects.empty()) return makeError("{}: scene has no objects", s);
@@ -207,6 +240,15 @@ Expected<void> finalizeScene(Scene& scene) {
         if (m.emissionTexture < -1 || m.emissionTexture >= static_cast<int>(scene.textures.size()))
             return makeError("{}: emission texture index {} out of range ({} textures)", where, m.emissionTexture,
                              scene.textures.size());
+        if (!finite(m.alpha) || !finite(m.alphaCutoff) || !finite(m.normalScale))
+            return makeError("{}: a value is not finite", where);
+        if (!inUnit(m.alpha)) return makeError("{}: alpha {} outside [0, 1]", where, m.alpha);
+        if (!inUnit(m.alphaCutoff)) return makeError("{}: alphaCutoff {} outside [0, 1]", where, m.alphaCutoff);
+        for (const auto& [index, what] : {std::pair{m.alphaTexture, "alpha"}, std::pair{m.normalTexture, "normal"},
+                                          std::pair{m.metallicRoughnessTexture, "metallic-roughness"}})
+            if (index < -1 || index >= static_cast<int>(scene.textures.size()))
+                return makeError("{}: {} texture index {} out of range ({} textures)", where, what, index,
+                                 scene.textures.size());
     }
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         Mesh& mesh = scene.meshes[i];
@@ -217,6 +259,18 @@ Expected<void> finalizeScene(Scene& scene) {
         const std::string where = fmt::format("{}: {}{}", s, label("mesh", mesh.name, i),
                                               users.empty() ? "" : " (object " + users + ")");
         BOUNCE_TRY_VOID(finalizeMesh(mesh, where));
+        if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.positions.size())
+            return makeError("{}: {} tangents for {} positions", where, mesh.tangents.size(), mesh.positions.size());
+        bool normalMapped = false;
+        for (const Object& o : scene.objects)
+            if (o.mesh == i && o.material < scene.materials.size() && scene.materials[o.material].normalTexture >= 0)
+                normalMapped = true;
+        if (normalMapped && mesh.tangents.empty()) {
+            if (mesh.uvs.empty())
+                spdlog::warn("{}: normal-mapped material but no texture coordinates: the normal map is ignored", where);
+            else
+                computeTangents(mesh);
+        }
     }
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         Object& o = scene.objects[i];

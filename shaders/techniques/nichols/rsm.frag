@@ -43,7 +43,8 @@ void main() {
         dir = d / max(distance, 1e-12);
     }
     float cosSurface = dot(n, -dir);
-    vec3 albedo = (1.0 - m.params.y) * materialAlbedo(material, v_uv);
+    vec3 albedo = (1.0 - materialRoughnessMetallic(material, v_uv).y) * materialAlbedo(material, v_uv);
+    if (materialMasked(material, v_uv)) discard;  // masked texels neither occlude nor reflect
     if (cosSurface < 0.0) {
         if (m.params.w > 0.5) {
             n = -n;

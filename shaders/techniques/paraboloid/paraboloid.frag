@@ -4,8 +4,11 @@
 // inverse paraboloid map) is intersected with the triangle's plane, whose normal comes from the
 // derivatives of the interpolated position (which stays on the plane). Only coverage at triangle
 // edges keeps the straight-edge error. Inputs: v_local, u_far (metres), u_size (texels).
-// Output: gl_FragDepth = distance / u_far.
+// Output: gl_FragDepth = distance / u_far. Alpha-masked texels occlude nothing (docs/scene.md).
+#include "common/scene.glsl"
 in vec3 v_local;
+in vec2 v_uv;
+flat in uint v_object;
 uniform float u_far;
 uniform vec2 u_size;
 
@@ -20,5 +23,7 @@ void main() {
     // Edge-on triangles (denominator ~0 relative to |n|) keep the interpolated distance.
     if (abs(denom) > 1e-6 * length(n)) t = dot(n, v_local) / denom;
     if (!(t > 0.0)) discard;
+    // Last, after every derivative: textureLod needs none.
+    if (materialMasked(u_objects[v_object].info.x, v_uv)) discard;
     gl_FragDepth = clamp(t / u_far, 0.0, 1.0);
 }

@@ -2,7 +2,7 @@
 // area-light's shadow-map baseline): the hemisphere
 // around the VPL's normal maps to the unit disc by uv = d.xy / (1 + d.z), d the unit direction in the
 // VPL frame. Host sets u_vplFromWorld (rows: tangent, bitangent, normal) and u_vplPosition (world).
-// Inputs: ATTR_* vertex attributes, ATTR_OBJECT_INDEX. Outputs: v_local (position in the VPL frame);
+// Inputs: ATTR_* vertex attributes, ATTR_OBJECT_INDEX. Outputs: v_local (position in the VPL frame), v_uv, v_object;
 // gl_ClipDistance[0] = d.z removes the back hemisphere.
 #include "common/scene.glsl"
 
@@ -15,6 +15,8 @@ uniform mat4 u_vplFromWorld;
 uniform vec3 u_vplPosition;
 
 out vec3 v_local;
+out vec2 v_uv;          // alpha mask lookup (paraboloid.frag); interpolated in paraboloid space
+flat out uint v_object;
 out gl_PerVertex {
     vec4 gl_Position;
     float gl_ClipDistance[1];
@@ -25,6 +27,8 @@ void main() {
     vec3 local = mat3(u_vplFromWorld) * (p.xyz - u_vplPosition);
     vec3 d = local / max(length(local), 1e-12);
     v_local = local;
+    v_uv = a_uv;
+    v_object = a_object;
     gl_ClipDistance[0] = d.z;
     // Vertices behind the hemisphere are clipped away; the floor keeps their projection finite.
     gl_Position = vec4(d.xy / max(1.0 + d.z, 1e-3), 0.0, 1.0);

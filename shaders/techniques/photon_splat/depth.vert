@@ -16,9 +16,13 @@ uniform int u_first;     // bundle of tile 0
 uniform ivec2 u_tiles;   // tiles per row, rows
 
 out float gl_ClipDistance[7];
+out vec2 v_uv;         // for render/shadow_depth.frag's alpha mask
+flat out uint v_object;
 
 void main() {
     SceneVertex sv = s_vertices[gl_VertexID];
+    v_uv = vec2(sv.u, sv.v);
+    v_object = a_draw.y;
     vec3 p = (u_objects[a_draw.y].worldFromObject * vec4(sv.px, sv.py, sv.pz, 1.0)).xyz;
     BundleGpu b = b_bundles[a_draw.x];
     float h = b.origin.w;

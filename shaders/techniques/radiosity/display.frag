@@ -17,6 +17,8 @@ in vec3 g_posWorld;
 in vec2 g_st;
 flat in uint g_quad;
 flat in vec3 g_normalWorld;
+in vec2 g_uv;
+flat in uint g_material;
 
 layout(location = 0) out vec4 o_direct;
 layout(location = 1) out vec4 o_indirect;
@@ -24,8 +26,13 @@ layout(location = 1) out vec4 o_indirect;
 void main() {
     o_direct = vec4(0.0, 0.0, 0.0, 1.0);
     o_indirect = vec4(0.0, 0.0, 0.0, 1.0);
-    if (g_quad == RAD_NO_QUAD) return;
-    if (dot(g_normalWorld, u_view.eyePosition.xyz - g_posWorld) <= 0.0) return;  // one-sided patches
+    // An alpha-masked texel is no surface: what lies behind it shows. Discarded last, after the atlas
+    // lookup's derivatives (GLSL: none after a discard).
+    bool masked = g_material != RAD_NO_MATERIAL && materialMasked(g_material, g_uv);
+    if (g_quad == RAD_NO_QUAD || dot(g_normalWorld, u_view.eyePosition.xyz - g_posWorld) <= 0.0) {  // one-sided patches
+        if (masked) discard;
+        return;
+    }
     RadQuadGpu q = u_quads[g_quad];
     vec2 st = clamp(g_st, 0.0, 1.0);
     ivec2 texel = ivec2(floor(vec2(q.atlas.xy) + 0.5 + st * vec2(q.atlas.zw - 1u)));
@@ -35,4 +42,5 @@ void main() {
     vec3 d = oneTexel ? vec3(0.0) : u_nearest != 0 ? texelFetch(s_light, texel, 0).rgb : texture(s_light, uv).rgb;
     o_direct.rgb = q.emission.rgb;
     o_indirect.rgb = max(b - q.emission.rgb - d, vec3(0.0));
+    if (masked) discard;
 }

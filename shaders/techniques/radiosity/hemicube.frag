@@ -7,6 +7,7 @@
 //   3 back shot hemicube (Alg. 4.4 lines 8-9; RGBA16F, 4x MSAA): rgb the shot radiosity of C, a the
 //     distance from the hemicube's origin (the depth of REPROJECT).
 // Patches are one-sided: a back face occludes but contributes no radiosity.
+#include "common/scene.glsl"
 #include "techniques/radiosity/patch.glsl"
 #include "techniques/radiosity/hemicube.glsl"
 
@@ -19,6 +20,8 @@ in vec3 g_posWorld;
 in vec2 g_st;
 flat in uint g_quad;
 flat in vec3 g_normalWorld;
+in vec2 g_uv;
+flat in uint g_material;
 
 #if RAD_HC_MODE == 0
 layout(location = 0) out uint o_id;
@@ -44,6 +47,8 @@ void main() {
         total = texture(s_total, uv).rgb;
         if (!radBodyMoving(q.info.x)) shot = total - texture(s_unshot, uv).rgb;
     }
+    // An alpha-masked texel is no surface: it neither occludes nor is seen (after the lookups above).
+    if (g_material != RAD_NO_MATERIAL && materialMasked(g_material, g_uv)) discard;
 #if RAD_HC_MODE == 1
     o_radiance = vec4(total, 1.0);
 #elif RAD_HC_MODE == 2

@@ -4,6 +4,7 @@
 // projections; here one draw, the face chosen by gl_Layer = 5 slot + face; Alg. 4.1-4.5 hemicubes).
 // RAD_HEMICUBE 0: pass-through of the camera's clip position (display).
 // Inputs: render/scene.vert or light.vert. Host defines: RAD_HEMICUBE.
+#include "common/scene.glsl"
 #include "techniques/radiosity/patch.glsl"
 #if RAD_HEMICUBE
 #include "techniques/radiosity/hemicube.glsl"
@@ -26,6 +27,8 @@ out vec3 g_posWorld;
 out vec2 g_st;
 flat out uint g_quad;
 flat out vec3 g_normalWorld;
+out vec2 g_uv;               // alpha mask lookup (hemicube.frag, display.frag)
+flat out uint g_material;    // the object's material, RAD_NO_MATERIAL for light quads
 
 void main() {
     if (v_object[0] == RAD_SKIP_OBJECT) return;
@@ -37,8 +40,11 @@ void main() {
     RadHemicubeGpu h = u_hemicubes[u_hemicube];
     int face = gl_InvocationID;
 #endif
+    uint material = (v_object[0] & RAD_LIGHT_OBJECT_BIT) != 0u ? RAD_NO_MATERIAL : u_objects[v_object[0]].info.x;
     for (int k = 0; k < 3; ++k) {
         g_posWorld = v_posWorld[k];
+        g_uv = v_uv[k];
+        g_material = material;
         g_st = st[k];
         g_quad = quad;
         g_normalWorld = n;

@@ -12,7 +12,8 @@ layout(std430, binding = BINDING_SSBO_RAD_BODIES_OLD) readonly buffer RadBodyOld
 
 // The light-quad draws tag their object index with this bit (light.vert).
 const uint RAD_LIGHT_OBJECT_BIT = 0x80000000u;
-const uint RAD_SKIP_OBJECT = 0xFFFFFFFFu;  // a light quad the draw's filter excludes
+const uint RAD_SKIP_OBJECT = 0xFFFFFFFFu;
+const uint RAD_NO_MATERIAL = 0xFFFFFFFFu;  // g_material of light quads: never masked  // a light quad the draw's filter excludes
 
 // The surface point of quad q at (s, t), object space (PatchModel::pointAt).
 vec3 radPointAt(RadQuadGpu q, vec2 st) {

@@ -17,9 +17,12 @@
 // at the column centre.
 // Inputs: voxelize.geom's world position, vertex data and triangle depth range, u_voxels
 // (BINDING_UBO_VOXELS), u_footprint. Outputs: up to SV_MAX_LAYERS uvec4.
+#include "common/scene.glsl"
 #include "techniques/screen_voxels/screen_voxels_shared.h"
 layout(std140, binding = BINDING_UBO_VOXELS) uniform VoxelBlock { ScreenVoxelsGpu u_voxels; };
 in vec3 g_posWorld;
+in vec2 g_uv;
+flat in uint g_object;
 flat in vec2 g_depthRange;
 flat in vec3 g_screenX;
 flat in vec3 g_screenY;
@@ -88,7 +91,9 @@ void main() {
     float u1 = (max(zHi, z) - u_voxels.depth.x) * u_voxels.depth.z;
     uvec4 words[SV_MAX_LAYERS];
     for (int k = 0; k < SV_MAX_LAYERS; ++k) words[k] = uvec4(0u);
-    if (u1 >= 0.0 && u0 < float(bits)) {  // else outside the grid's depth range: not represented
+    // An alpha-masked texel is no surface (docs/scene.md): it sets no bit (OR with zero, no discard).
+    bool masked = materialMasked(u_objects[g_object].info.x, g_uv);
+    if (!masked && u1 >= 0.0 && u0 < float(bits)) {  // else outside the grid's depth range: not represented
         int s0 = max(int(floor(u0)), 0), s1 = min(int(floor(u1)), bits - 1);
         for (int w = s0 / 32; w <= s1 / 32; ++w) {
             int lo = max(s0 - 32 * w, 0), hi = min(s1 - 32 * w, 31);

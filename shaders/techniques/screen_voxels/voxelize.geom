@@ -17,7 +17,11 @@ layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 layout(std140, binding = BINDING_UBO_VOXELS) uniform VoxelBlock { ScreenVoxelsGpu u_voxels; };
 in vec3 v_posWorld[];
+in vec2 v_uv[];
+flat in uint v_object[];
 out vec3 g_posWorld;
+out vec2 g_uv;              // alpha mask lookup (voxelize.frag)
+flat out uint g_object;
 flat out vec2 g_depthRange;
 flat out vec3 g_screenX;    // vertices' grid pixel coordinates (window origin, as gl_FragCoord)
 flat out vec3 g_screenY;
@@ -46,6 +50,8 @@ void main() {
     for (int i = 0; i < 3; ++i) {
         gl_Position = gl_in[i].gl_Position;
         g_posWorld = v_posWorld[i];
+        g_uv = v_uv[i];
+        g_object = v_object[i];
         g_depthRange = range;
         g_screenX = sx;
         g_screenY = sy;

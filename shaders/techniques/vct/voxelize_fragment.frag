@@ -52,6 +52,9 @@ void main() {
     if (!voxTestXY(t, p)) return;
     ivec2 zr = voxDepthRange(t, p, conservative);
     if (zr.x > zr.y) return;
+    // An alpha-masked texel is no surface (docs/scene.md): the column is sampled at its centre, once
+    // per voxel column as the injection's attributes are.
+    if (materialMasked(u_objects[gf_object].info.x, gf_uv)) return;
     vec3 radiance = vec3(0.0);
     if (u_vct.range.w < 0.5) {
         uint material = u_objects[gf_object].info.x;

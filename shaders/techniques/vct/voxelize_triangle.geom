@@ -52,6 +52,7 @@ void main() {
     atomicAdd(c_counts[1], 1u);
     uint material = u_objects[vg_object[0]].info.x;
     bool twoSided = u_materials[material].params.w > 0.5;
+    bool masked = u_materials[material].alpha.x > 0.0;
     // Barycentric set-up in the dominant (XY) projection, never degenerate after the swizzle.
     vec2 a = t.v0.xy, b = t.v1.xy, c = t.v2.xy;
     float area2 = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
@@ -61,6 +62,15 @@ void main() {
             if (!voxTestXY(t, p)) continue;
             ivec2 zr = voxDepthRange(t, p, conservative);
             if (zr.x > zr.y) continue;
+            if (masked) {
+                // An alpha-masked material's voxel column exists where the mask covers the column
+                // centre's point on the triangle (one sample per column, as the injection's attributes).
+                vec2 q = p + 0.5;
+                float l1 = ((q.x - a.x) * (c.y - a.y) - (c.x - a.x) * (q.y - a.y)) / area2;
+                float l2 = ((b.x - a.x) * (q.y - a.y) - (q.x - a.x) * (b.y - a.y)) / area2;
+                vec2 uvq = (1.0 - l1 - l2) * vg_uv[0] + l1 * vg_uv[1] + l2 * vg_uv[2];
+                if (materialMasked(material, uvq)) continue;
+            }
             bool shaded = false;
             vec3 radiance = vec3(0.0);
             for (int z = zr.x; z <= zr.y; ++z) {

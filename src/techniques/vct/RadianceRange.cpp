@@ -59,6 +59,9 @@ std::vector<RangeSample> rangeSamples(const Scene& scene, size_t count) {
     std::vector<std::pair<uint32_t, uint32_t>> tris;  // (object, first index)
     for (uint32_t o = 0; o < scene.objects.size(); ++o) {
         const Object& obj = scene.objects[o];
+        // Alpha-masked surfaces (foliage cards) are left out: where they exist needs their texture,
+        // and a range taken from texels that are not there would rescale every other voxel.
+        if (scene.materials[obj.material].masked()) continue;
         const Mesh& m = scene.meshes[obj.mesh];
         const glm::mat4 w = obj.worldFromObject(0.0f);
         for (uint32_t i = 0; i + 2 < m.indices.size(); i += 3) {
