@@ -175,8 +175,12 @@ GpuInfo clampToGlMinimums(GpuInfo i) {
         clamp(i.maxStorageBlocks[s], stage + ".storageBlocks");
         clamp(i.maxUniformBlocks[s], stage + ".uniformBlocks");
     }
-    clamp(i.maxColorTextureSamples, "colorTextureSamples");
-    clamp(i.maxDepthTextureSamples, "depthTextureSamples");
+    // Multisample textures: GL's minimum of 1 sample is met by no GL 4.5 driver (all report at least
+    // GL_MAX_SAMPLES' minimum of 4); a clamp to 1 would refuse radiosity's msaa=4 default (van de Hoef
+    // 2013 sec. 5.3.1) everywhere. Clamped to 4 instead, so msaa 8 and 16 are refused as on a 4-sample GL.
+    constexpr int kPortableTextureSamples = 4;  // GL 4.5 Table 23.69's minimum of GL_MAX_SAMPLES
+    i.maxColorTextureSamples = std::min(i.maxColorTextureSamples, kPortableTextureSamples);
+    i.maxDepthTextureSamples = std::min(i.maxDepthTextureSamples, kPortableTextureSamples);
     i.portableLimits = true;
     return i;
 }

@@ -647,6 +647,8 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
 void AreaLightTechnique::collectCounters(Counters& c) {
     if (!m_frameRan) return;
     uint32_t stats[AL_STAT_COUNT] = {};
+    // The gathers wrote the counters as a storage buffer: the CPU read needs this bit (issue 29 #7).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_stats.download(0, sizeof(stats), stats);
     c["vpls"] = m_vplCount;
     c["raysCast"] = stats[AL_STAT_RAYS_CAST];

@@ -3,6 +3,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/ShaderLimits.h"
+#include "techniques/nichols/VplWindow.h"
 
 namespace bounce::nichols {
 
@@ -38,7 +39,8 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
     BOUNCE_CHECK(grid > 0 && grid <= rsm.size() && rsm.size() % grid == 0, "VPL grid {} does not divide the RSM size {}",
                  grid, rsm.size());
     const int count = grid * grid * rsm.layers();
-    const size_t bytes = static_cast<size_t>(count) * sizeof(VplRecord);
+    // Padded to a whole uniform-block window past the last VPL (VplWindow::bind; issue 29 #13).
+    const size_t bytes = static_cast<size_t>(VplWindow::paddedRecords(count)) * sizeof(VplRecord);
     if (!m_buffer || m_buffer.size() != bytes) m_buffer = gl::Buffer::create("nichols.vplCache", bytes);
     m_count = count;
     if (grid != m_grid || rsm.layers() != m_layers) {
@@ -66,6 +68,8 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
 
 std::vector<VplRecord> RegularVpls::download() const {
     std::vector<VplRecord> v(static_cast<size_t>(m_count));
+    // vpl_extract.comp wrote the cache as a storage buffer: the CPU read needs this bit (issue 29 #7).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (m_count > 0) m_buffer.download(0, v.size() * sizeof(VplRecord), v.data());
     return v;
 }
