@@ -54,3 +54,108 @@ TEST_F(PortabilityFixesGpuTest, EveryVplWindowBindsAWholeWindow) {
         }
     }
 }
+
+namespace {
+
+// A compute program from source (glCreateShaderProgramv): the tracker's synthetic writer and readers.
+GLuint computeProgram(const char* body) {
+    const std::string src = std::string("#version 450\nlayout(local_size_x = 1) in;\n") + body;
+    const char* text = src.c_str();
+    const GLuint p = glCreateShaderProgramv(GL_COMPUTE_SHADER, 1, &text);
+    GLint linked = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &linked);
+    EXPECT_EQ(linked, GL_TRUE) << src;
+    return p;
+}
+
+// Turns the tracker on for one test (and back to what it was).
+struct TrackerOn {
+    bool was = gl::barrierTracking();
+    TrackerOn() {
+        gl::installBarrierTracker();
+        gl::setBarrierTracking(true);
+        gl::resetBarrierState();
+        gl::resetBarrierViolations();
+    }
+    ~TrackerOn() {
+        gl::resetBarrierViolations();
+        gl::resetBarrierState();
+        gl::setBarrierTracking(was);
+    }
+};
+
+}  // namespace
+
+TEST_F(PortabilityFixesGpuTest, BarrierTrackerReportsAStorageWriteReadAsUniformsOrByTheCpuWithoutItsBit) {
+    // The shapes of #3 (isr's clusters written as a storage buffer, read as a uniform window) and #7
+    // (a storage buffer read back by the CPU): each read is a violation unless the bit of *that* read
+    // came between. llvmpipe gives the right numbers either way; the tracker is what fails.
+    TrackerOn on;
+    const GLuint writer = computeProgram("layout(std430, binding = 4) buffer B { uint v[]; } b;\n"
+                                         "void main() { b.v[0] = 42u; }\n");
+    const GLuint reader = computeProgram("layout(std140, binding = 3) uniform U { uvec4 v; } u;\n"
+                                         "layout(std430, binding = 5) buffer O { uint v[]; } o;\n"
+                                         "void main() { o.v[0] = u.v.x; }\n");
+    gl::Buffer cache = gl::Buffer::create("test.barrierCache", 256);
+    gl::Buffer out = gl::Buffer::create("test.barrierOut", 16);
+    cache.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+    cache.bindBase(GL_UNIFORM_BUFFER, 3);
+    out.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
+    const auto writeThenRead = [&](GLbitfield bits) {
+        gl::resetBarrierViolations();
+        glUseProgram(writer);
+        glDispatchCompute(1, 1, 1);
+        if (bits) glMemoryBarrier(bits);
+        glUseProgram(reader);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        uint32_t value = 0;
+        out.download(0, sizeof(value), &value);
+        EXPECT_EQ(value, 42u);  // llvmpipe is right regardless
+        return gl::barrierViolations();
+    };
+    const auto none = writeThenRead(0);
+    ASSERT_EQ(none.size(), 1u);
+    EXPECT_NE(none[0].find("test.barrierCache"), std::string::npos) << none[0];
+    EXPECT_NE(none[0].find("uniform block (binding 3)"), std::string::npos) << none[0];
+    EXPECT_NE(none[0].find("GL_UNIFORM_BARRIER_BIT"), std::string::npos) << none[0];
+    // isr's old barrier: storage and buffer-update bits, no uniform bit.
+    EXPECT_EQ(writeThenRead(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT).size(), 1u);
+    EXPECT_TRUE(writeThenRead(GL_UNIFORM_BARRIER_BIT).empty());
+
+    // #7: a readback of the shader-written buffer without GL_BUFFER_UPDATE_BARRIER_BIT.
+    gl::resetBarrierViolations();
+    glUseProgram(writer);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);  // RegularVpls' old bits
+    uint32_t value = 0;
+    cache.download(0, sizeof(value), &value);
+    ASSERT_EQ(gl::barrierViolations().size(), 1u);
+    EXPECT_NE(gl::barrierViolations()[0].find("GL_BUFFER_UPDATE_BARRIER_BIT"), std::string::npos) << gl::barrierViolations()[0];
+    gl::resetBarrierViolations();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    cache.download(0, sizeof(value), &value);
+    EXPECT_TRUE(gl::barrierViolations().empty());
+    EXPECT_EQ(value, 42u);
+
+    // Indirect arguments and sampled textures written by images: GL_COMMAND / GL_TEXTURE_FETCH bits.
+    gl::resetBarrierViolations();
+    const GLuint args = computeProgram("layout(std430, binding = 4) buffer B { uint v[]; } b;\n"
+                                       "void main() { b.v[0] = 1u; b.v[1] = 1u; b.v[2] = 1u; }\n");
+    glUseProgram(args);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cache.id());
+    glUseProgram(reader);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    bool command = false;
+    for (const auto& v : gl::barrierViolations()) command |= v.find("GL_COMMAND_BARRIER_BIT") != std::string::npos;
+    EXPECT_TRUE(command);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    gl::resetBarrierViolations();
+    glUseProgram(0);
+    glDeleteProgram(writer);
+    glDeleteProgram(reader);
+    glDeleteProgram(args);
+}
