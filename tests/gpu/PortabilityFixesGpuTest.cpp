@@ -2,6 +2,8 @@
 // the code before its fix. Limits are made testable on llvmpipe with a GpuInfo copy set to a smaller
 // driver's values (what BOUNCE_PORTABLE_LIMITS=1 does to the context's own).
 #include "GpuTestSupport.h"
+#include "NicholsTestSupport.h"
+#include "techniques/Registry.h"
 #include "gpu/Bindings.h"
 #include "techniques/nichols/VplWindow.h"
 #include "techniques/radiosity/RadiositySystem.h"
@@ -158,4 +160,39 @@ TEST_F(PortabilityFixesGpuTest, BarrierTrackerReportsAStorageWriteReadAsUniforms
     glDeleteProgram(writer);
     glDeleteProgram(reader);
     glDeleteProgram(args);
+}
+
+TEST_F(PortabilityFixesGpuTest, BuffersPastTheDeviceLimitsAreRefusedInSetup) {
+    // #6: hisr's VPL tree at rsmSize=1024 with a cube RSM (cornell-box-area's area light) is 537 MB, the
+    // rsm VPL cache at vplGrid=2048 1.2 GB: past GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB on llvmpipe,
+    // AMD and Intel; the GL 4.5 minimum). They were allocated and written out of bounds silently; now
+    // setup refuses them in one line naming the setting, the size and the limit. The defaults pass.
+    auto scene = loadScene("cornell-box-area");
+    ASSERT_TRUE(scene.ok());
+    const long long limit = gputest::sharedContext()->info().maxShaderStorageBlockSize;
+    struct Case {
+        std::string technique;
+        std::map<std::string, std::string> settings;
+        std::string setting;
+        double bytes;  // the object's size
+    };
+    const double treeBytes = 6.0 * 64.0 * (1024.0 * 1024 + 512 * 512 + 256 * 256 + 128 * 128 + 64 * 64 + 32 * 32 + 16 * 16);
+    for (const Case& c : std::vector<Case>{{"hisr", {{"rsmSize", "1024"}}, "rsmSize=1024", treeBytes},
+                                           {"rsm", {{"rsmSize", "2048"}, {"vplGrid", "2048"}}, "vplGrid=2048", 6.0 * 2048 * 2048 * 48}}) {
+        if (c.bytes <= static_cast<double>(limit)) continue;  // a GL with larger blocks (NVIDIA: 2 GiB) accepts it
+        auto t = createTechnique(c.technique);
+        ASSERT_TRUE(t.ok());
+        ASSERT_TRUE(applySettings(**t, c.settings, c.technique).ok());
+        auto p = Pipeline::create(*scene, std::move(*t), {16, 16}, nicholstest::smallRenderSettings());
+        ASSERT_FALSE(p.ok()) << c.technique;
+        const std::string& m = p.error().message;
+        EXPECT_NE(m.find(c.setting), std::string::npos) << m;
+        EXPECT_NE(m.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " + std::to_string(limit)), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+    for (const std::string technique : {"hisr", "rsm"}) {  // defaults: accepted
+        auto t = createTechnique(technique);
+        ASSERT_TRUE(t.ok());
+        EXPECT_TRUE(Pipeline::create(*scene, std::move(*t), {16, 16}, nicholstest::smallRenderSettings()).ok()) << technique;
+    }
 }

@@ -62,7 +62,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
 
 Expected<void> IsrTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
-    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
     if (m_lightFinest > m_rsmSize || m_lightCoarsest > m_lightFinest)
         return makeError("settings need lightCoarsest={} <= lightFinest={} <= rsmSize={}", m_lightCoarsest, m_lightFinest, m_rsmSize);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());

@@ -127,7 +127,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
 
 Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
-    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
     // auto (the default): the stencilled splat where it applies (one shared list), else the thesis's points.
     m_primitive = m_splatPrimitive != "auto" ? m_splatPrimitive : m_refinement == "shared" ? "stencil" : "points";
     if (m_splatPrimitive == "stencil" && m_refinement != "shared")

@@ -2,6 +2,8 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
+#include "gpu/SetupLimits.h"
 #include "gpu/ShaderLimits.h"
 #include "techniques/nichols/VplWindow.h"
 
@@ -18,8 +20,12 @@ Expected<RegularVpls> RegularVpls::create() {
     return r;
 }
 
-Expected<void> RegularVpls::checkGrid(int rsmSize, int grid) {
+Expected<void> RegularVpls::checkGrid(int rsmSize, int grid, int layers) {
     if (grid <= 0 || rsmSize % grid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", grid, rsmSize);
+    const size_t records = static_cast<size_t>(grid) * static_cast<size_t>(grid) * static_cast<size_t>(layers);
+    const size_t bytes = (records + static_cast<size_t>(VplWindow::size())) * sizeof(VplRecord);  // with the window padding
+    BOUNCE_TRY_VOID(gl::checkStorageBuffer(gl::Context::current()->info(), bytes, fmt::format("setting vplGrid={}", grid),
+                                           fmt::format("the VPL cache of {} VPLs ({} RSM layers)", records, layers)));
     // The extraction loops over a block's texels (and once per block row): block^2 + block iterations.
     const int block = rsmSize / grid;
     if (block * block + block > gl::kShaderLoopIterationBudget) {
