@@ -4,6 +4,7 @@
 #include "GpuTestSupport.h"
 #include "NicholsTestSupport.h"
 #include "techniques/Registry.h"
+#include "techniques/nichols/MinMaxPyramid.h"
 #include "gpu/Bindings.h"
 #include "techniques/nichols/VplWindow.h"
 #include "techniques/radiosity/RadiositySystem.h"
@@ -195,4 +196,21 @@ TEST_F(PortabilityFixesGpuTest, BuffersPastTheDeviceLimitsAreRefusedInSetup) {
         ASSERT_TRUE(t.ok());
         EXPECT_TRUE(Pipeline::create(*scene, std::move(*t), {16, 16}, nicholstest::smallRenderSettings()).ok()) << technique;
     }
+}
+
+TEST_F(PortabilityFixesGpuTest, MultiresAtlasPastTheTextureSizeIsRefused) {
+    // #16: the multiresolution atlas is 1.5x the indirect base wide; an output past ~2/3 of
+    // GL_MAX_TEXTURE_SIZE made an atlas GL refused mid-frame. Now setup refuses it in one line.
+    gl::GpuInfo info = gputest::sharedContext()->info();
+    info.maxTextureSize = 1000;
+    EXPECT_TRUE(nichols::checkAtlasSize({600, 400}, "output 600x400", info).ok());  // 900 wide
+    auto refused = nichols::checkAtlasSize({700, 400}, "output 700x400", info);   // 1050 wide
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("1050x400"), std::string::npos) << refused.error().message;
+    EXPECT_NE(refused.error().message.find("GL_MAX_TEXTURE_SIZE of 1000"), std::string::npos) << refused.error().message;
+    // On the context: isr/hisr/multires-splat check through checkIndirectSize; indirectSize is the way out.
+    const int max = gputest::sharedContext()->info().maxTextureSize;
+    const glm::ivec2 wide(max * 3 / 4, 16);
+    EXPECT_FALSE(nichols::checkIndirectSize(0, wide).ok());
+    EXPECT_TRUE(nichols::checkIndirectSize(max / 4, wide).ok());
 }

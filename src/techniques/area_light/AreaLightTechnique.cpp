@@ -207,6 +207,8 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
         m_lightIndices.push_back(i);
     }
     if (m_lightIndices.empty()) return makeError("scene '{}': no area light (area-light needs one)", ctx.scene.name);
+    BOUNCE_TRY_VOID(nichols::checkAtlasSize(ctx.size, fmt::format("output {}x{}", ctx.size.x, ctx.size.y),
+                                            gl::Context::current()->info()));  // issue 29 #16
     if (m_lightIndices.size() > AL_MAX_LIGHTS)
         return makeError("scene '{}': {} area lights; area-light shades at most {}", ctx.scene.name, m_lightIndices.size(),
                          AL_MAX_LIGHTS);

@@ -29,11 +29,22 @@ void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSiz
 }
 
 Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output) {
-    if (indirectSize == 0) return {};
     const int larger = std::max(output.x, output.y);
-    if (indirectSize < 0 || (indirectSize & (indirectSize - 1)) != 0 || indirectSize > larger)
+    if (indirectSize != 0 && (indirectSize < 0 || (indirectSize & (indirectSize - 1)) != 0 || indirectSize > larger))
         return makeError("indirectSize={} must be 0 (output size) or a power of two no larger than the output's larger side {}",
                          indirectSize, larger);
+    const int scale = indirectScale(indirectSize, output);
+    return checkAtlasSize((output + glm::ivec2(scale - 1)) / scale,
+                          fmt::format("output {}x{} with indirectSize={}", output.x, output.y, indirectSize),
+                          gl::Context::current()->info());
+}
+
+Expected<void> checkAtlasSize(glm::ivec2 base, const std::string& settings, const gl::GpuInfo& info) {
+    const int width = base.x + std::max(base.x / 2, 1);  // MultiresBuffer: base level + level 1's column
+    if (width > info.maxTextureSize || base.y > info.maxTextureSize)
+        return makeError("{}: the multiresolution illumination atlas is {}x{} texels (1.5x the indirect base {}x{}), past this GL's "
+                         "GL_MAX_TEXTURE_SIZE of {}; lower the output size or set indirectSize",
+                         settings, width, base.y, base.x, base.y, info.maxTextureSize);
     return {};
 }
 

@@ -39,6 +39,11 @@ void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSiz
 Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output);
 // The power-of-two divisor s of the output for indirectSize (1 for 0 or a cap the output already fits).
 int indirectScale(int indirectSize, glm::ivec2 output);
+// One-line error when the multiresolution atlas (nichols/MultiresBuffer: the base level beside a column of
+// the coarser ones, 1.5x the base width) of an indirect base of `base` texels passes `info`'s
+// GL_MAX_TEXTURE_SIZE (issue 29 #16: outputs past about 10,900 pixels on a 16,384 GL). checkIndirectSize
+// runs it on the current context; techniques without indirectSize (area-light) call it themselves.
+Expected<void> checkAtlasSize(glm::ivec2 base, const std::string& settings, const gl::GpuInfo& info);
 
 class MinMaxPyramid {
 public:
