@@ -3,8 +3,11 @@
 // driver's values (what BOUNCE_PORTABLE_LIMITS=1 does to the context's own).
 #include "GpuTestSupport.h"
 #include "NicholsTestSupport.h"
+#include "metrics/ErrorMetrics.h"
 #include "techniques/Registry.h"
+#include "techniques/isr/IsrTechnique.h"
 #include "techniques/nichols/MinMaxPyramid.h"
+#include "techniques/nichols/StencilledGather.h"
 #include "gpu/Bindings.h"
 #include "techniques/nichols/VplWindow.h"
 #include "techniques/radiosity/RadiositySystem.h"
@@ -213,4 +216,31 @@ TEST_F(PortabilityFixesGpuTest, MultiresAtlasPastTheTextureSizeIsRefused) {
     const glm::ivec2 wide(max * 3 / 4, 16);
     EXPECT_FALSE(nichols::checkIndirectSize(0, wide).ok());
     EXPECT_TRUE(nichols::checkIndirectSize(max / 4, wide).ok());
+}
+
+TEST_F(PortabilityFixesGpuTest, ComputeGatherGroupsWrapIntoA2dGridPastTheXLimit) {
+    // #5 (the stencilled gather's part): cell_args.comp asked for ceil(cells / 64) groups in x, past
+    // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] (65,535 in GL 4.5 and on llvmpipe) at 4K outputs. The groups
+    // now wrap into rows of maxGroupsX(); with the limit lowered to 3 groups (192 cells) a 48^2 isr
+    // frame (about 2,000 cells) uses a 3 x 11 grid and must give the same image as one row.
+    auto scene = loadScene("cornell-box");
+    ASSERT_TRUE(scene.ok());
+    const std::map<std::string, std::string> settings = {{"gatherPass", "compute"}};
+    auto wide = nicholstest::makePipeline(*scene, "isr", settings, 48);
+    wide->renderFrame(1);
+    const Image x = wide->readback(Component::Indirect);
+    nichols::StencilledGather::s_maxGroupsXForTests = 3;
+    auto grid = nicholstest::makePipeline(*scene, "isr", settings, 48);
+    const Counters c = grid->renderFrame(1).counters;
+    nichols::StencilledGather::s_maxGroupsXForTests = 0;
+    uint32_t groups[3] = {};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    dynamic_cast<IsrTechnique&>(grid->technique()).gather().dispatchArgs().download(0, sizeof(groups), groups);
+    EXPECT_EQ(groups[0], 3u);  // the old cell_args.comp asked for ceil(cells / 64) groups here
+    EXPECT_GT(groups[1], 1u);
+    const Image y = grid->readback(Component::Indirect);
+    ASSERT_GT(nicholstest::totalRadiance(x), 0.0);
+    ASSERT_GT(c.at("gatherFragments"), 3.0 * 64.0) << "the list must outgrow one row of 3 groups";
+    // Each cell is summed by one invocation either way: equal up to llvmpipe's run-to-run noise.
+    EXPECT_LT(relativeRmsError(y, x), 1e-6);
 }
