@@ -155,7 +155,11 @@ GpuInfo clampToGlMinimums(GpuInfo i) {
     clamp(i.maxDrawBuffers, "colorAttachments");
     clamp(i.maxUniformBlockSize, "uniformBlockSize");
     clamp(i.maxShaderStorageBlockSize, "storageBlockSize");
-    clamp(i.maxTextureBufferSize, "textureBufferSize");
+    // Buffer textures: GL's minimum of 65,536 texels (1 MiB of RGBA32F) is reported by no GL 4.5 driver
+    // (NVIDIA, AMD, Intel and llvmpipe: 2^27) and is below hisr's VPL tree at its defaults (349,184
+    // texels): clamped to the vendors' lowest value instead, so the check still refuses past it.
+    if (const LimitRow* row = findLimit("textureBufferSize"))
+        i.maxTextureBufferSize = static_cast<int>(std::min<long long>(i.maxTextureBufferSize, row->portable()));
     clamp(i.maxComputeInvocations, "compute.invocations");
     clamp(i.maxComputeWorkGroupSize[0], "compute.localSizeX");
     clamp(i.maxComputeWorkGroupSize[1], "compute.localSizeY");
