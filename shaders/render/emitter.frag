@@ -18,9 +18,11 @@ void main() {
     bool twoSided = (int(u_light.area.w) & AREA_TWO_SIDED) != 0;
     bool textured = (int(u_light.area.w) & AREA_TEXTURED) != 0;
     float facing = dot(u_view.eyePosition.xyz - v_posWorld, n);
+    // Implicit-LOD sampling before the discard (derivatives after one are undefined; issue 29 #4's rule).
+    vec3 texel = textured ? texture(s_areaTexture, v_uv).rgb : vec3(1.0);
     if (facing <= 0.0 && !twoSided) discard;
     o_position = vec4(v_posWorld, 1.0);
     o_normal = vec4(facing > 0.0 ? n : -n, 1.0);
     o_albedo = vec4(0.0);
-    o_emission = vec4(textured ? u_light.area.rgb * texture(s_areaTexture, v_uv).rgb : u_light.emission.rgb, 0.0);
+    o_emission = vec4(textured ? u_light.area.rgb * texel : u_light.emission.rgb, 0.0);
 }

@@ -59,18 +59,23 @@
 // is also vct's; the two are never bound in one pass.
 #define BINDING_TEX_VOXELS 16
 #define BINDING_TEX_VOXELS_OUTER 17  // the second grid (march.glsl SV_OUTER_GRID); vct's unit too, never bound in one pass with it
+// Min-max pyramids (techniques/nichols/pyramid_reduce.comp) read level k-1 of their five chains here:
+// units past every pass's own (GL 4.5 guarantees 80 combined units; a stage's count stays <= 16).
+#define BINDING_TEX_PYRAMID0 32
+#define BINDING_TEX_PYRAMID1 33
+#define BINDING_TEX_PYRAMID2 34
+#define BINDING_TEX_PYRAMID3 35
+#define BINDING_TEX_PYRAMID4 36
 
 // Image units
 #define BINDING_IMG0 0
 #define BINDING_IMG1 1
 #define BINDING_IMG2 2
 #define BINDING_IMG3 3
-#define BINDING_IMG4 4  // min-max pyramids (techniques/nichols) read five and write five images
+#define BINDING_IMG4 4  // min-max pyramids (techniques/nichols) write five images (and read level k-1 by samplers)
 #define BINDING_IMG5 5
 #define BINDING_IMG6 6
-#define BINDING_IMG7 7
-#define BINDING_IMG8 8
-#define BINDING_IMG9 9
+#define BINDING_IMG7 7  // the highest unit: GL 4.5 and NVIDIA's driver have 8 image units (issue 29 finding #1)
 
 // Vertex attribute locations
 #define ATTR_POSITION 0

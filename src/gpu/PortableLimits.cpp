@@ -155,7 +155,11 @@ GpuInfo clampToGlMinimums(GpuInfo i) {
     clamp(i.maxDrawBuffers, "colorAttachments");
     clamp(i.maxUniformBlockSize, "uniformBlockSize");
     clamp(i.maxShaderStorageBlockSize, "storageBlockSize");
-    clamp(i.maxTextureBufferSize, "textureBufferSize");
+    // Buffer textures: GL's minimum of 65,536 texels (1 MiB of RGBA32F) is reported by no GL 4.5 driver
+    // (NVIDIA, AMD, Intel and llvmpipe: 2^27) and is below hisr's VPL tree at its defaults (349,184
+    // texels): clamped to the vendors' lowest value instead, so the check still refuses past it.
+    if (const LimitRow* row = findLimit("textureBufferSize"))
+        i.maxTextureBufferSize = static_cast<int>(std::min<long long>(i.maxTextureBufferSize, row->portable()));
     clamp(i.maxComputeInvocations, "compute.invocations");
     clamp(i.maxComputeWorkGroupSize[0], "compute.localSizeX");
     clamp(i.maxComputeWorkGroupSize[1], "compute.localSizeY");
@@ -175,8 +179,12 @@ GpuInfo clampToGlMinimums(GpuInfo i) {
         clamp(i.maxStorageBlocks[s], stage + ".storageBlocks");
         clamp(i.maxUniformBlocks[s], stage + ".uniformBlocks");
     }
-    clamp(i.maxColorTextureSamples, "colorTextureSamples");
-    clamp(i.maxDepthTextureSamples, "depthTextureSamples");
+    // Multisample textures: GL's minimum of 1 sample is met by no GL 4.5 driver (all report at least
+    // GL_MAX_SAMPLES' minimum of 4); a clamp to 1 would refuse radiosity's msaa=4 default (van de Hoef
+    // 2013 sec. 5.3.1) everywhere. Clamped to 4 instead, so msaa 8 and 16 are refused as on a 4-sample GL.
+    constexpr int kPortableTextureSamples = 4;  // GL 4.5 Table 23.69's minimum of GL_MAX_SAMPLES
+    i.maxColorTextureSamples = std::min(i.maxColorTextureSamples, kPortableTextureSamples);
+    i.maxDepthTextureSamples = std::min(i.maxDepthTextureSamples, kPortableTextureSamples);
     i.portableLimits = true;
     return i;
 }

@@ -3,6 +3,7 @@
 #include "gpu/ProgramChecks.h"
 
 #include "core/FileIo.h"
+#include "gpu/BarrierTracker.h"
 #include "gpu/Context.h"
 #include "gpu/PortableLimits.h"
 
@@ -17,8 +18,6 @@
 #include <set>
 
 namespace bounce::gl {
-
-namespace {
 
 bool isImageType(GLenum t) {
     switch (t) {
@@ -55,6 +54,8 @@ bool isSamplerType(GLenum t) {
         default: return false;
     }
 }
+
+namespace {
 
 int stageIndex(GLenum stage) {
     switch (stage) {
@@ -198,6 +199,11 @@ void report(const std::string& status, std::string_view program, const LimitFind
 }  // namespace
 
 Expected<void> auditLinkedProgram(std::string_view label, GLuint program, const std::vector<StageSource>& sources) {
+    if (barrierCheckRequested() || barrierTracking()) {
+        std::vector<std::string> texts;
+        for (const auto& s : sources) texts.push_back(s.text);
+        detail::barrierNoteProgramSources(program, texts);
+    }
     const bool portable = portableLimitsMode();
     const std::vector<LimitFinding> findings = auditProgram(label, queryProgramUse(program, sources));
     if (findings.empty()) return {};

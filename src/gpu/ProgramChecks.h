@@ -26,5 +26,8 @@ struct StageSource {
 ProgramUse queryProgramUse(GLuint program, const std::vector<StageSource>& sources);
 Expected<void> auditLinkedProgram(std::string_view label, GLuint program, const std::vector<StageSource>& sources);
 void dumpShaderSources(std::string_view label, const std::vector<StageSource>& sources);
+// GL_TYPE of an active uniform: an image or a sampler type (also used by gpu/BarrierTracker).
+bool isImageType(GLenum type);
+bool isSamplerType(GLenum type);
 
 }  // namespace bounce::gl

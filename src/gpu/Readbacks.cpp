@@ -1,6 +1,7 @@
 #include "gpu/Readbacks.h"
 
 #include "core/Check.h"
+#include "gpu/BarrierTracker.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -26,6 +27,25 @@ bool queryReadWaits(GLenum pname) {
     return queryBuffer == 0;
 }
 
+// The buffer bound to `target` (the barrier tracker's view of a target-based read).
+GLuint boundBuffer(GLenum target) {
+    GLenum binding = 0;
+    switch (target) {
+        case GL_ARRAY_BUFFER: binding = GL_ARRAY_BUFFER_BINDING; break;
+        case GL_SHADER_STORAGE_BUFFER: binding = GL_SHADER_STORAGE_BUFFER_BINDING; break;
+        case GL_UNIFORM_BUFFER: binding = GL_UNIFORM_BUFFER_BINDING; break;
+        case GL_COPY_READ_BUFFER: binding = GL_COPY_READ_BUFFER_BINDING; break;
+        case GL_COPY_WRITE_BUFFER: binding = GL_COPY_WRITE_BUFFER_BINDING; break;
+        case GL_PIXEL_PACK_BUFFER: binding = GL_PIXEL_PACK_BUFFER_BINDING; break;
+        case GL_DRAW_INDIRECT_BUFFER: binding = GL_DRAW_INDIRECT_BUFFER_BINDING; break;
+        case GL_DISPATCH_INDIRECT_BUFFER: binding = GL_DISPATCH_INDIRECT_BUFFER_BINDING; break;
+        default: return 0;
+    }
+    GLint id = 0;
+    glGetIntegerv(binding, &id);
+    return static_cast<GLuint>(id);
+}
+
 template <typename F>
 F resolve(const char* name) {
     auto f = reinterpret_cast<F>(eglGetProcAddress(name));
@@ -49,43 +69,51 @@ BOUNCE_QUERY_HOOK(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v, GLuint64)
 PFNGLGETNAMEDBUFFERSUBDATAPROC real_getNamedBufferSubData = nullptr;
 void EPOXY_CALLSPEC hook_getNamedBufferSubData(GLuint b, GLintptr o, GLsizeiptr s, void* d) {
     note("glGetNamedBufferSubData");
+    detail::barrierBufferRead(b, "a readback (glGetNamedBufferSubData)");
     real_getNamedBufferSubData(b, o, s, d);
 }
 PFNGLGETBUFFERSUBDATAPROC real_getBufferSubData = nullptr;
 void EPOXY_CALLSPEC hook_getBufferSubData(GLenum t, GLintptr o, GLsizeiptr s, void* d) {
     note("glGetBufferSubData");
+    if (barrierTracking()) detail::barrierBufferRead(boundBuffer(t), "a readback (glGetBufferSubData)");
     real_getBufferSubData(t, o, s, d);
 }
 // Mapping waits for the GPU's pending writes unless the caller asks for an unsynchronised map.
 PFNGLMAPNAMEDBUFFERRANGEPROC real_mapNamedBufferRange = nullptr;
 void* EPOXY_CALLSPEC hook_mapNamedBufferRange(GLuint b, GLintptr o, GLsizeiptr s, GLbitfield a) {
     if (!(a & GL_MAP_UNSYNCHRONIZED_BIT)) note("glMapNamedBufferRange");
+    detail::barrierBufferRead(b, "a mapping (glMapNamedBufferRange)");
     return real_mapNamedBufferRange(b, o, s, a);
 }
 PFNGLMAPBUFFERRANGEPROC real_mapBufferRange = nullptr;
 void* EPOXY_CALLSPEC hook_mapBufferRange(GLenum t, GLintptr o, GLsizeiptr s, GLbitfield a) {
     if (!(a & GL_MAP_UNSYNCHRONIZED_BIT)) note("glMapBufferRange");
+    if (barrierTracking()) detail::barrierBufferRead(boundBuffer(t), "a mapping (glMapBufferRange)");
     return real_mapBufferRange(t, o, s, a);
 }
 PFNGLMAPNAMEDBUFFERPROC real_mapNamedBuffer = nullptr;
 void* EPOXY_CALLSPEC hook_mapNamedBuffer(GLuint b, GLenum a) {
     note("glMapNamedBuffer");
+    detail::barrierBufferRead(b, "a mapping (glMapNamedBuffer)");
     return real_mapNamedBuffer(b, a);
 }
 PFNGLMAPBUFFERPROC real_mapBuffer = nullptr;
 void* EPOXY_CALLSPEC hook_mapBuffer(GLenum t, GLenum a) {
     note("glMapBuffer");
+    if (barrierTracking()) detail::barrierBufferRead(boundBuffer(t), "a mapping (glMapBuffer)");
     return real_mapBuffer(t, a);
 }
 PFNGLGETTEXTUREIMAGEPROC real_getTextureImage = nullptr;
 void EPOXY_CALLSPEC hook_getTextureImage(GLuint t, GLint l, GLenum f, GLenum ty, GLsizei s, void* p) {
     note("glGetTextureImage");
+    detail::barrierTextureRead(t, "a readback (glGetTextureImage)");
     real_getTextureImage(t, l, f, ty, s, p);
 }
 PFNGLGETTEXTURESUBIMAGEPROC real_getTextureSubImage = nullptr;
 void EPOXY_CALLSPEC hook_getTextureSubImage(GLuint t, GLint l, GLint x, GLint y, GLint z, GLsizei w, GLsizei h,
                                             GLsizei d, GLenum f, GLenum ty, GLsizei s, void* p) {
     note("glGetTextureSubImage");
+    detail::barrierTextureRead(t, "a readback (glGetTextureSubImage)");
     real_getTextureSubImage(t, l, x, y, z, w, h, d, f, ty, s, p);
 }
 PFNGLGETTEXIMAGEPROC real_getTexImage = nullptr;

@@ -11,7 +11,8 @@
 // table of writable function pointers) so that every call made inside a FramePath is logged with its
 // name; tests/gpu/ReadbackGpuTest.cpp installs it and renders every registered technique. Reads that
 // do not wait are not logged: GL_QUERY_RESULT_AVAILABLE and GL_QUERY_RESULT_NO_WAIT, and query results
-// written into a bound GL_QUERY_BUFFER.
+// written into a bound GL_QUERY_BUFFER. The same hooks tell the barrier tracker (gpu/BarrierTracker.h)
+// of CPU reads of buffers and textures.
 #include <string>
 #include <vector>
 

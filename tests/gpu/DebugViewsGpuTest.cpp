@@ -37,6 +37,7 @@ std::vector<glm::vec4> downloadLevel(const gl::Texture& t, int level, glm::ivec3
     glGetTextureLevelParameteriv(t.id(), level, GL_TEXTURE_HEIGHT, &size.y);
     size.z = t.desc().depth;
     std::vector<glm::vec4> texels(static_cast<size_t>(size.x) * size.y * size.z);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // views may be written as images (BOUNCE_BARRIER_CHECK)
     glGetTextureImage(t.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)), texels.data());
     return texels;
 }

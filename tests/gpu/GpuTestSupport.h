@@ -1,7 +1,9 @@
 #pragma once
 // Shared fixture of the GPU tests: one headless context per test binary. Under CI=true a missing
 // context is a failure, elsewhere the GPU tests skip. Every test fails if KHR_debug reported a GL
-// error while it ran.
+// error while it ran, and, with BOUNCE_BARRIER_CHECK=1 (gpu/BarrierTracker.h), if a shader-written
+// buffer or texture was read without the matching glMemoryBarrier bit.
+#include "gpu/BarrierTracker.h"
 #include "gpu/Context.h"
 #include "scene/SceneLoader.h"
 
@@ -42,10 +44,20 @@ protected:
         }
         sharedContext()->makeCurrent();
         gl::Context::resetDebugErrorCount();
+        if (gl::barrierCheckRequested()) {
+            gl::installBarrierTracker();
+            gl::setBarrierTracking(true);
+            gl::resetBarrierState();
+            gl::resetBarrierViolations();
+        }
     }
     void TearDown() override {
         if (sharedContext()) {
             EXPECT_EQ(gl::Context::debugErrorCount(), 0) << "GL errors were reported (see log)";
+            if (gl::barrierTracking()) {
+                for (const auto& v : gl::barrierViolations()) ADD_FAILURE() << "missing memory barrier: " << v;
+                gl::resetBarrierViolations();
+            }
         }
     }
 };

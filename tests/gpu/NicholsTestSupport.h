@@ -31,6 +31,7 @@ inline render::RenderSettings smallRenderSettings() {
 // Level `level` of an RGBA texture (every layer of an array texture: `layers` x size texels), as floats.
 inline std::vector<glm::vec4> readLevel(const gl::Texture& texture, int level, glm::ivec2 size, int layers = 1) {
     std::vector<glm::vec4> texels(static_cast<size_t>(size.x) * size.y * layers);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the pyramids are written as images (BOUNCE_BARRIER_CHECK)
     glGetTextureImage(texture.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
                       texels.data());
     return texels;

@@ -4,6 +4,7 @@
 #include "GpuTestSupport.h"
 #include "app/Options.h"
 #include "app/viewer/ViewerSettings.h"
+#include "gpu/Bindings.h"
 #include "gpu/GpuTimers.h"
 #include "gpu/Program.h"
 #include "gpu/ProgramChecks.h"
@@ -12,6 +13,7 @@
 #include "scene/SceneLoader.h"
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
+#include "techniques/nichols/MinMaxPyramid.h"
 
 #include <nlohmann/json.hpp>
 
@@ -100,22 +102,38 @@ TEST_F(PortabilityGpuTest, ContextEnablesSeamlessCubeMapFilteringAndNamesItsProf
     EXPECT_EQ(gl::shaderLoopIterationBudget(DeviceProfile::Gpu), 1 << 24);
 }
 
-TEST_F(PortabilityGpuTest, InterfaceQueriesCountThePyramidReducesTenImageUnits) {
-    // Finding #1 as GL reports it: one compute program with image uniforms on units 0..9.
+TEST_F(PortabilityGpuTest, InterfaceQueriesCountThePyramidPassesWithinEightImageUnits) {
+    // Finding #1, fixed: pyramid_reduce.comp bound image units 0..9 (five inputs, five outputs); it now
+    // reads level k-1 through five samplers (units BINDING_TEX_PYRAMID0..4) and writes five images.
+    // On the old shader this test saw 10 image uniforms and a finding past the portable limit.
     const std::vector<std::pair<GLenum, std::string>> stages = {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_reduce.comp"}};
     auto p = gl::Program::build({"test.pyramidReduce", stages});
     ASSERT_TRUE(p.ok()) << p.error().message;
     const gl::ProgramUse use = useOf(*p, stages);
     const auto& compute = use.stages[static_cast<size_t>(gl::ShaderStage::Compute)];
     EXPECT_TRUE(compute.present);
-    EXPECT_EQ(compute.imageUniforms, 10);
-    EXPECT_EQ(use.imageUnits, 10);
+    EXPECT_EQ(compute.imageUniforms, 5);
+    EXPECT_EQ(use.imageUnits, 5);
+    EXPECT_EQ(compute.samplers, 5);
+    EXPECT_EQ(use.textureUnits, BINDING_TEX_PYRAMID4 + 1);
     EXPECT_EQ(use.computeLocalSize[0], 8);
     EXPECT_EQ(use.computeLocalSize[1], 8);
     EXPECT_EQ(use.computeInvocations, 64);
-    bool unitsPastPortable = false;
-    for (const auto& f : gl::auditProgram("test.pyramidReduce", use)) unitsPastPortable |= f.key == "imageUnits" && f.pastPortable;
-    EXPECT_TRUE(unitsPastPortable);
+    for (const auto& f : gl::auditProgram("test.pyramidReduce", use)) EXPECT_FALSE(f.pastPortable) << f.key;
+    // pyramid_flag.comp: units 0..6, MinMaxPyramid::kImageUniforms.
+    const std::vector<std::pair<GLenum, std::string>> flagStages = {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_flag.comp"}};
+    auto flag = gl::Program::build({"test.pyramidFlag", flagStages});
+    ASSERT_TRUE(flag.ok()) << flag.error().message;
+    EXPECT_EQ(useOf(*flag, flagStages).imageUnits, nichols::MinMaxPyramid::kImageUniforms);
+
+    // The pyramid's setup check answers as a driver with fewer units would (one line, naming the limits).
+    gl::GpuInfo info = gputest::sharedContext()->info();
+    EXPECT_TRUE(nichols::MinMaxPyramid::checkLimits(info).ok());
+    info.maxImageUniforms[static_cast<size_t>(gl::ShaderStage::Compute)] = nichols::MinMaxPyramid::kImageUniforms - 1;
+    auto refused = nichols::MinMaxPyramid::checkLimits(info);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("GL_MAX_COMPUTE_IMAGE_UNIFORMS"), std::string::npos) << refused.error().message;
+    EXPECT_EQ(refused.error().message.find('\n'), std::string::npos);
 
     // A graphics program: compose reads two textures in its fragment stage and nothing else.
     const std::vector<std::pair<GLenum, std::string>> compose = {{GL_VERTEX_SHADER, "common/fullscreen.vert"},

@@ -7,6 +7,11 @@ to the GL 4.5 minimums and a program past a portable limit fails to link. Known 
 through by the allow-list; an allow-list line that no program hits any more fails the test (its
 finding was fixed: remove the line). The assembled shader sources are dumped for the glslang test.
 
+The same run checks memory barriers (BOUNCE_BARRIER_CHECK=1, src/gpu/BarrierTracker.h): a shader-written
+buffer or texture read as a uniform block, sampler, indirect or vertex buffer or by a readback without
+the matching glMemoryBarrier bit fails its test. Two technique tests whose CPU readbacks the
+every-technique test does not make (photon-splat's rsm injection, area-light's counters) are added.
+
 Usage: portable_limits_test.py GPU_TEST_BINARY ALLOW_LIST WORK_DIR [GTEST_FILTER]
 """
 import os
@@ -14,7 +19,9 @@ import shutil
 import subprocess
 import sys
 
-FILTER = "PipelineGpuTest.EveryTechniqueRendersEveryBuiltinSceneWithFiniteOutput:DebugViewsGpuTest.*"
+FILTER = ("PipelineGpuTest.EveryTechniqueRendersEveryBuiltinSceneWithFiniteOutput:DebugViewsGpuTest.*:"
+          "PhotonSplatGpuTest.RsmInjectionCarriesTheSamePowerAsShotPhotons:"
+          "AreaLightGpuTest.MatchesThePathTracersDirectLightOnCornellBoxArea")
 
 
 def read_allow_list(path):
@@ -35,7 +42,7 @@ def main():
     os.makedirs(work)
     report = os.path.join(work, "report.tsv")
     env = dict(os.environ, BOUNCE_PORTABLE_LIMITS="1", BOUNCE_PORTABLE_ALLOW=allow, BOUNCE_PORTABLE_REPORT=report,
-               BOUNCE_SHADER_DUMP=os.path.join(work, "shaders"))
+               BOUNCE_SHADER_DUMP=os.path.join(work, "shaders"), BOUNCE_BARRIER_CHECK="1")
     p = subprocess.run([binary, f"--gtest_filter={gtest_filter}"], env=env, capture_output=True, text=True)
     rows = []
     if os.path.exists(report):
@@ -47,10 +54,11 @@ def main():
         for program, key, value, minimum in found:
             print(f"  {program:36} {key:26} {value:>6} (GL 4.5 minimum {minimum})")
     if p.returncode != 0:
-        failed = [l for l in p.stdout.splitlines() if "FAILED" in l or "portable limit" in l or "Failure" in l]
+        failed = [l for l in p.stdout.splitlines()
+                  if "FAILED" in l or "portable limit" in l or "Failure" in l or "missing memory barrier" in l]
         print(p.stdout[-6000:])
         print(p.stderr[-3000:], file=sys.stderr)
-        print(f"portable-limits run failed (exit {p.returncode}); {len(failed)} failure line(s) above", file=sys.stderr)
+        print(f"portable-limits / barrier-check run failed (exit {p.returncode}); {len(failed)} failure line(s) above", file=sys.stderr)
         return 1
     hit = {(r[1], r[2]) for r in rows if r[0] == "allowed"}
     stale = [(prog, key, finding, n) for prog, key, finding, n in read_allow_list(allow)

@@ -97,8 +97,8 @@ TEST(PortableLimits, ClampLowersEveryLimitToTheGlMinimum) {
     EXPECT_TRUE(c.portableLimits);
     EXPECT_EQ(c.maxImageUnits, 8);
     EXPECT_EQ(c.maxUniformBlockSize, 16384);
-    EXPECT_EQ(c.maxTextureBufferSize, 65536);
-    EXPECT_EQ(c.maxDepthTextureSamples, 1);
+    EXPECT_EQ(c.maxTextureBufferSize, 134217728);  // the vendors' lowest, not GL's 65,536 (see the clamp)
+    EXPECT_EQ(c.maxDepthTextureSamples, 4);  // GL_MAX_SAMPLES' minimum, not the texture minimum of 1 (see the clamp)
     EXPECT_EQ(c.maxGeometryOutputVertices, 256);
     EXPECT_EQ(c.maxComputeWorkGroupSize[2], 64);
     EXPECT_EQ(c.maxImageUniforms[0], 0);  // vertex

@@ -3,20 +3,25 @@
 // derivative and of the depth; per-component min/max of the normal; covered/uncovered counts; the
 // fifth chain is the light pyramid's flux (summed) or the eye pyramid's optional curvature (max only,
 // §3.3.1). With u_linearDepth (eye pyramid, §3.2.2.1) normal.w is the min of the children's view depths.
-// Host uniforms: u_childSize, u_size, u_hasFlux (light pyramid), u_hasCurvature (eye pyramid), u_linearDepth.
-// Inputs: level k-1 (images BINDING_IMG0..4). Outputs: level k (images BINDING_IMG5..9).
+// Host uniforms: u_childLevel (k-1), u_childSize, u_size, u_hasFlux (light pyramid), u_hasCurvature (eye
+// pyramid), u_linearDepth.
+// Inputs: level k-1 through texelFetch on the same textures (units BINDING_TEX_PYRAMID0..4): five images
+// plus five outputs would be 10 image units, past GL 4.5's and NVIDIA's 8 (issue 29 finding #1).
+// Outputs: level k (images BINDING_IMG0..4). Reading level k-1 by a sampler while level k is written as an
+// image is defined: different levels, and the previous dispatch ends in GL_TEXTURE_FETCH_BARRIER_BIT.
 #include "techniques/nichols/pyramid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = BINDING_IMG0) readonly uniform image2DArray i_geometryIn;
-layout(rgba32f, binding = BINDING_IMG1) readonly uniform image2DArray i_normalIn;
-layout(rgba32f, binding = BINDING_IMG2) readonly uniform image2DArray i_normalMinIn;
-layout(rgba32f, binding = BINDING_IMG3) readonly uniform image2DArray i_normalMaxIn;
-layout(rgba32f, binding = BINDING_IMG4) readonly uniform image2DArray i_fluxIn;
-layout(rgba32f, binding = BINDING_IMG5) writeonly uniform image2DArray i_geometryOut;
-layout(rgba32f, binding = BINDING_IMG6) writeonly uniform image2DArray i_normalOut;
-layout(rgba32f, binding = BINDING_IMG7) writeonly uniform image2DArray i_normalMinOut;
-layout(rgba32f, binding = BINDING_IMG8) writeonly uniform image2DArray i_normalMaxOut;
-layout(rgba32f, binding = BINDING_IMG9) writeonly uniform image2DArray i_fluxOut;
+layout(binding = BINDING_TEX_PYRAMID0) uniform sampler2DArray s_geometryIn;
+layout(binding = BINDING_TEX_PYRAMID1) uniform sampler2DArray s_normalIn;
+layout(binding = BINDING_TEX_PYRAMID2) uniform sampler2DArray s_normalMinIn;
+layout(binding = BINDING_TEX_PYRAMID3) uniform sampler2DArray s_normalMaxIn;
+layout(binding = BINDING_TEX_PYRAMID4) uniform sampler2DArray s_fluxIn;
+layout(rgba32f, binding = BINDING_IMG0) writeonly uniform image2DArray i_geometryOut;
+layout(rgba32f, binding = BINDING_IMG1) writeonly uniform image2DArray i_normalOut;
+layout(rgba32f, binding = BINDING_IMG2) writeonly uniform image2DArray i_normalMinOut;
+layout(rgba32f, binding = BINDING_IMG3) writeonly uniform image2DArray i_normalMaxOut;
+layout(rgba32f, binding = BINDING_IMG4) writeonly uniform image2DArray i_fluxOut;
+uniform int u_childLevel;
 uniform ivec2 u_childSize;
 uniform ivec2 u_size;
 uniform bool u_hasFlux;
@@ -34,17 +39,17 @@ void main() {
     for (int y = first.y; y <= last.y; ++y)
         for (int x = first.x; x <= last.x; ++x) {
             ivec3 c = ivec3(x, y, t.z);
-            g += imageLoad(i_geometryIn, c);
-            vec4 cn = imageLoad(i_normalIn, c);
+            g += texelFetch(s_geometryIn, c, u_childLevel);
+            vec4 cn = texelFetch(s_normalIn, c, u_childLevel);
             n.xyz += cn.xyz;
             n.w = u_linearDepth ? min(n.w, cn.w) : max(n.w, cn.w);
-            vec4 cMin = imageLoad(i_normalMinIn, c), cMax = imageLoad(i_normalMaxIn, c);
+            vec4 cMin = texelFetch(s_normalMinIn, c, u_childLevel), cMax = texelFetch(s_normalMaxIn, c, u_childLevel);
             nMin.xyz = min(nMin.xyz, cMin.xyz);
             nMin.w += cMin.w;
             nMax.xyz = max(nMax.xyz, cMax.xyz);
             nMax.w = max(nMax.w, cMax.w);
-            if (u_hasFlux) f += imageLoad(i_fluxIn, c);
-            if (u_hasCurvature) f.r = max(f.r, imageLoad(i_fluxIn, c).r);
+            if (u_hasFlux) f += texelFetch(s_fluxIn, c, u_childLevel);
+            if (u_hasCurvature) f.r = max(f.r, texelFetch(s_fluxIn, c, u_childLevel).r);
         }
     imageStore(i_geometryOut, t, g);
     imageStore(i_normalOut, t, n);

@@ -13,11 +13,12 @@ uniform float u_far;
 uniform vec2 u_size;
 
 void main() {
+    // Derivatives before any discard: after one they are undefined (issue 29 #4).
+    vec3 n = cross(dFdx(v_local), dFdy(v_local));
     vec2 uv = gl_FragCoord.xy / u_size * 2.0 - 1.0;
     float r2 = dot(uv, uv);
     if (r2 > 1.0) discard;
     vec3 d = vec3(2.0 * uv, 1.0 - r2) / (1.0 + r2);
-    vec3 n = cross(dFdx(v_local), dFdy(v_local));
     float denom = dot(n, d);
     float t = length(v_local);
     // Edge-on triangles (denominator ~0 relative to |n|) keep the interpolated distance.

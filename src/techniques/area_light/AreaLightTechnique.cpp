@@ -197,6 +197,8 @@ Expected<void> AreaLightTechnique::setup(const SetupContext& ctx) {
         m_lightIndices.push_back(i);
     }
     if (m_lightIndices.empty()) return makeError("scene '{}': no area light (area-light needs one)", ctx.scene.name);
+    BOUNCE_TRY_VOID(nichols::checkAtlasSize(ctx.size, fmt::format("output {}x{}", ctx.size.x, ctx.size.y),
+                                            gl::Context::current()->info()));  // issue 29 #16
     if (m_lightIndices.size() > AL_MAX_LIGHTS)
         return makeError("scene '{}': {} area lights; area-light shades at most {}", ctx.scene.name, m_lightIndices.size(),
                          AL_MAX_LIGHTS);
@@ -604,6 +606,8 @@ void AreaLightTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
 void AreaLightTechnique::collectCounters(Counters& c) {
     if (!m_frameRan) return;
     uint32_t stats[AL_STAT_COUNT] = {};
+    // The gathers wrote the counters as a storage buffer: the CPU read needs this bit (issue 29 #7).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_stats.download(0, sizeof(stats), stats);
     c["vpls"] = m_vplCount;
     c["raysCast"] = stats[AL_STAT_RAYS_CAST];

@@ -19,10 +19,13 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
+#include "gpu/SetupLimits.h"
 #include "gpu/ShaderLimits.h"
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace bounce {
@@ -46,6 +49,22 @@ Expected<void> HisrTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     if ((m_rsmSize & (m_rsmSize - 1)) != 0) return makeError("setting rsmSize={} is not a power of two", m_rsmSize);
     if (m_rootGrid > m_rsmSize) return makeError("setting rootGrid={} exceeds rsmSize={}", m_rootGrid, m_rsmSize);
+    {
+        // The VPL tree: every light-pyramid level down to rootGrid (at most 4/3 of the base), 64 bytes a
+        // node, one storage buffer also read as an RGBA32F buffer texture (issue 29 #6: rsmSize=1024 with a
+        // cube RSM is 537 MB).
+        const int layers = nichols::ReflectiveShadowMap::layersFor(ctx.scene);
+        size_t nodes = 0;
+        for (int side = m_rsmSize;; side /= 2) {  // MinMaxPyramid's levels: down to the first side <= rootGrid
+            nodes += static_cast<size_t>(side) * static_cast<size_t>(side) * static_cast<size_t>(layers);
+            if (side <= m_rootGrid || side == 1) break;
+        }
+        const std::string settings = fmt::format("setting rsmSize={}", m_rsmSize);
+        const std::string what = fmt::format("hisr's VPL tree ({} nodes, {} RSM layers)", nodes, layers);
+        const gl::GpuInfo& info = gl::Context::current()->info();
+        BOUNCE_TRY_VOID(gl::checkStorageBuffer(info, nodes * kTreeRecordBytes, settings, what));
+        BOUNCE_TRY_VOID(gl::checkTextureBuffer(info, nodes * kTreeRecordBytes / 16, settings, what));
+    }
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_light, nichols::MinMaxPyramid::create());
     BOUNCE_TRY(m_eye, nichols::StencilledGather::create());

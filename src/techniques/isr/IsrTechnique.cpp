@@ -63,7 +63,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
 
 Expected<void> IsrTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
-    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
     if (m_lightFinest > m_rsmSize || m_lightCoarsest > m_lightFinest)
         return makeError("settings need lightCoarsest={} <= lightFinest={} <= rsmSize={}", m_lightCoarsest, m_lightFinest, m_rsmSize);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
@@ -112,7 +112,10 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             while (finest + 1 < m_light->levels() && m_light->levelSize(finest).x > m_lightFinest) ++finest;
             const glm::ivec2 fine = m_light->levelSize(finest);
             const size_t capacity = static_cast<size_t>(fine.x) * fine.y * m_light->layers() * sizeof(nichols::VplRecord);
-            if (!m_clusterVpls || m_clusterVpls.size() != capacity) m_clusterVpls = gl::Buffer::create("isr.clusterVpls", capacity);
+            // Padded to a whole uniform-block window past the capacity (VplWindow::bind; issue 29 #13).
+            const size_t padded = static_cast<size_t>(nichols::VplWindow::paddedRecords(static_cast<int>(capacity / sizeof(nichols::VplRecord)))) *
+                                  sizeof(nichols::VplRecord);
+            if (!m_clusterVpls || m_clusterVpls.size() != padded) m_clusterVpls = gl::Buffer::create("isr.clusterVpls", padded);
             m_count.clearZero();
             m_light->geometry().bind(BINDING_TEX_TECH0);
             m_light->normal().bind(BINDING_TEX_TECH1);
@@ -127,7 +130,9 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
             glDispatchCompute(static_cast<GLuint>((fine.x + kLocalSize - 1) / kLocalSize),
                               static_cast<GLuint>((fine.y + kLocalSize - 1) / kLocalSize),
                               static_cast<GLuint>(m_light->layers()));
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+            // The gather reads the clusters through uniform-block windows (VplWindow): GL_UNIFORM_BARRIER_BIT
+            // (issue 29 #3; radeonsi invalidates its constant cache only on it).
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
             // The cluster count stays on the GPU (the gather reads it): the draws cover the capacity, and
             // a draw past the count ends its loops at once. No readback on the frame's path (issue 18).
             vplBound = static_cast<int>(capacity / sizeof(nichols::VplRecord));

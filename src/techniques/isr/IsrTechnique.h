@@ -28,6 +28,7 @@ public:
 
     const nichols::MultiresBuffer& buffer() const { return m_eye->buffer(); }
     const nichols::MinMaxPyramid& eyePyramid() const { return m_eye->eye(); }
+    const nichols::StencilledGather& gather() const { return *m_eye; }  // for tests
     int vplCount() const { return m_vplCount; }  // as of the last collectCounters
     // vplMode=clusters: the light pyramid and the cluster VPLs (count in clusterCount()), for tests.
     const nichols::MinMaxPyramid& lightPyramid() const { return *m_light; }

@@ -126,7 +126,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
 
 Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
-    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
     // auto (the default): the stencilled splat where it applies (one shared list), else the thesis's points.
     m_primitive = m_splatPrimitive != "auto" ? m_splatPrimitive : m_refinement == "shared" ? "stencil" : "points";
     if (m_splatPrimitive == "stencil" && m_refinement != "shared")
@@ -292,7 +292,9 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                     m_refineReset.set("u_side", next);
                     m_refineReset.use();
                     glDispatchCompute(static_cast<GLuint>((n + 63) / 64), 1, 1);
-                    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+                    // The reset writes the other side of the control block than the indirect dispatch below
+                    // reads; the command bit keeps the barrier tracker's whole-buffer rule exact (issue 29).
+                    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
                     m_lists[current].bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
                     m_lists[next].bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
                     refine.set("u_initial", pass == 0 ? 1 : 0);

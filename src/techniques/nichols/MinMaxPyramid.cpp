@@ -2,6 +2,8 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
+#include "gpu/PortableLimits.h"
 
 #include <algorithm>
 
@@ -9,6 +11,8 @@ namespace bounce::nichols {
 
 namespace {
 constexpr int kLocalSize = 8;  // local_size_x/y of the pyramid compute shaders
+static_assert(MinMaxPyramid::kTextureUnits == BINDING_TEX_PYRAMID4 + 1, "pyramid texture units");
+static_assert(MinMaxPyramid::kImageUniforms == BINDING_IMG6 + 1, "pyramid_flag.comp's highest image unit");
 
 void dispatch2D(glm::ivec2 size, int layers) {
     glDispatchCompute(static_cast<GLuint>((size.x + kLocalSize - 1) / kLocalSize),
@@ -25,11 +29,22 @@ void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSiz
 }
 
 Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output) {
-    if (indirectSize == 0) return {};
     const int larger = std::max(output.x, output.y);
-    if (indirectSize < 0 || (indirectSize & (indirectSize - 1)) != 0 || indirectSize > larger)
+    if (indirectSize != 0 && (indirectSize < 0 || (indirectSize & (indirectSize - 1)) != 0 || indirectSize > larger))
         return makeError("indirectSize={} must be 0 (output size) or a power of two no larger than the output's larger side {}",
                          indirectSize, larger);
+    const int scale = indirectScale(indirectSize, output);
+    return checkAtlasSize((output + glm::ivec2(scale - 1)) / scale,
+                          fmt::format("output {}x{} with indirectSize={}", output.x, output.y, indirectSize),
+                          gl::Context::current()->info());
+}
+
+Expected<void> checkAtlasSize(glm::ivec2 base, const std::string& settings, const gl::GpuInfo& info) {
+    const int width = base.x + std::max(base.x / 2, 1);  // MultiresBuffer: base level + level 1's column
+    if (width > info.maxTextureSize || base.y > info.maxTextureSize)
+        return makeError("{}: the multiresolution illumination atlas is {}x{} texels (1.5x the indirect base {}x{}), past this GL's "
+                         "GL_MAX_TEXTURE_SIZE of {}; lower the output size or set indirectSize",
+                         settings, width, base.y, base.x, base.y, info.maxTextureSize);
     return {};
 }
 
@@ -41,7 +56,21 @@ int indirectScale(int indirectSize, glm::ivec2 output) {
     return scale;
 }
 
+Expected<void> MinMaxPyramid::checkLimits(const gl::GpuInfo& info) {
+    const int compute = static_cast<int>(gl::ShaderStage::Compute);
+    if (info.maxImageUniforms[compute] < kImageUniforms || info.maxImageUnits < kImageUniforms)
+        return makeError("the min-max pyramid's compute passes need {} image uniforms on units 0..{}; this GL has {} compute image "
+                         "uniforms and {} image units (GL_MAX_COMPUTE_IMAGE_UNIFORMS, GL_MAX_IMAGE_UNITS)",
+                         kImageUniforms, kImageUniforms - 1, info.maxImageUniforms[compute], info.maxImageUnits);
+    if (info.maxCombinedTextureUnits < kTextureUnits)
+        return makeError("the min-max pyramid reads level k-1 on texture units up to {}; this GL has {} "
+                         "(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)",
+                         kTextureUnits - 1, info.maxCombinedTextureUnits);
+    return {};
+}
+
 Expected<MinMaxPyramid> MinMaxPyramid::create() {
+    BOUNCE_TRY_VOID(checkLimits(gl::Context::current()->info()));
     MinMaxPyramid p;
     BOUNCE_TRY(p.m_baseEye, gl::Program::build({"nichols.pyramidBaseEye",
                                                 {{GL_COMPUTE_SHADER, "techniques/nichols/pyramid_base_eye.comp"}}}));
@@ -147,10 +176,12 @@ void MinMaxPyramid::reduceAndFlag(const PyramidThresholds& t, bool flux, std::op
     glClearTexImage(m_refine.id(), 0, GL_RED, GL_FLOAT, &zero);
     for (int level = 1; level < m_levels; ++level) {
         const glm::ivec2 child = m_sizes[static_cast<size_t>(level - 1)], size = m_sizes[static_cast<size_t>(level)];
+        // Level k-1 by texelFetch, level k as images: 5 image units (issue 29 finding #1).
         for (int i = 0; i < 5; ++i) {
-            chains[i]->bindImage(BINDING_IMG0 + i, GL_READ_ONLY, level - 1, true);
-            chains[i]->bindImage(BINDING_IMG5 + i, GL_WRITE_ONLY, level, true);
+            chains[i]->bind(BINDING_TEX_PYRAMID0 + i);
+            chains[i]->bindImage(BINDING_IMG0 + i, GL_WRITE_ONLY, level, true);
         }
+        m_reduce.set("u_childLevel", level - 1);
         m_reduce.set("u_childSize", child);
         m_reduce.set("u_size", size);
         m_reduce.set("u_hasFlux", flux ? 1 : 0);

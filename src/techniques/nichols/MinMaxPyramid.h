@@ -5,6 +5,7 @@
 // halve (floor) down to the first level whose larger side is <= coarsestSize (16 in the thesis).
 // Texel records: shaders/techniques/nichols/pyramid.glsl. The eye pyramid can also carry the optional
 // curvature max-mipmap of §3.3.1 (Eq. 3.1), used as an extra refinement criterion.
+#include "gpu/GpuInfo.h"
 #include "techniques/nichols/ReflectiveShadowMap.h"
 
 #include <optional>
@@ -38,9 +39,21 @@ void visitEyeSettings(SettingsVisitor& v, PyramidThresholds& t, int& indirectSiz
 Expected<void> checkIndirectSize(int indirectSize, glm::ivec2 output);
 // The power-of-two divisor s of the output for indirectSize (1 for 0 or a cap the output already fits).
 int indirectScale(int indirectSize, glm::ivec2 output);
+// One-line error when the multiresolution atlas (nichols/MultiresBuffer: the base level beside a column of
+// the coarser ones, 1.5x the base width) of an indirect base of `base` texels passes `info`'s
+// GL_MAX_TEXTURE_SIZE (issue 29 #16: outputs past about 10,900 pixels on a 16,384 GL). checkIndirectSize
+// runs it on the current context; techniques without indirectSize (area-light) call it themselves.
+Expected<void> checkAtlasSize(glm::ivec2 base, const std::string& settings, const gl::GpuInfo& info);
 
 class MinMaxPyramid {
 public:
+    // Image units the pyramid's compute passes bind (pyramid_flag.comp: units 0..6; pyramid_reduce.comp
+    // writes 5 and reads level k-1 through samplers), within GL 4.5's and NVIDIA's 8 (issue 29 #1).
+    static constexpr int kImageUniforms = 7;
+    // Texture units up to BINDING_TEX_PYRAMID4 (36) + 1; GL 4.5 guarantees 80.
+    static constexpr int kTextureUnits = 37;
+    // One-line error when `info` has fewer compute image uniforms / image units / texture units than that.
+    static Expected<void> checkLimits(const gl::GpuInfo& info);
     static Expected<MinMaxPyramid> create();
 
     // Eye space over the G-buffer (u_frame must be bound). With curvatureThreshold, also builds the

@@ -47,14 +47,19 @@ Expected<ReflectiveShadowMap> ReflectiveShadowMap::create() {
     return r;
 }
 
+int ReflectiveShadowMap::layersFor(const Light& light) {
+    const bool single = light.type == LightType::Directional ||
+                        (light.type == LightType::Spot && light.cutoffAngle <= kMaxPerspectiveCutoff);
+    return single ? 1 : 6;
+}
+
 bool ReflectiveShadowMap::render(FrameContext& ctx, int size, bool equalSolidAngle) {
     const std::vector<Light>& lights = ctx.sceneGpu.lights();
     m_valid = false;
     if (lights.empty() || ctx.lights.count() == 0) return false;
     const Light& light = lights.front();
-    const bool single = light.type == LightType::Directional ||
-                        (light.type == LightType::Spot && light.cutoffAngle <= kMaxPerspectiveCutoff);
-    const int layers = single ? 1 : 6;
+    const int layers = layersFor(light);
+    const bool single = layers == 1;
     if (size != m_size || layers != m_layers) {
         m_size = size;
         m_layers = layers;

@@ -22,6 +22,10 @@ gl::TextureDesc texelArrayDesc(int size, int layers);
 class ReflectiveShadowMap {
 public:
     static Expected<ReflectiveShadowMap> create();
+    // Layers of the map of `light` (1: a narrow spot or a directional light; 6: cube faces), and of a
+    // scene's map (its light 0; 1 without lights): setup checks size what the frames will allocate.
+    static int layersFor(const Light& light);
+    static int layersFor(const Scene& scene) { return scene.lights.empty() ? 1 : layersFor(scene.lights.front()); }
 
     // Renders the map of light 0 at `size` x `size` texels per layer. Returns false (and leaves the
     // map empty) when the scene has no light. equalSolidAngle: Eq. 4.4's approximation (every texel

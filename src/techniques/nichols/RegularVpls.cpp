@@ -2,7 +2,10 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
+#include "gpu/SetupLimits.h"
 #include "gpu/ShaderLimits.h"
+#include "techniques/nichols/VplWindow.h"
 
 namespace bounce::nichols {
 
@@ -17,8 +20,12 @@ Expected<RegularVpls> RegularVpls::create() {
     return r;
 }
 
-Expected<void> RegularVpls::checkGrid(int rsmSize, int grid) {
+Expected<void> RegularVpls::checkGrid(int rsmSize, int grid, int layers) {
     if (grid <= 0 || rsmSize % grid != 0) return makeError("setting vplGrid={} does not divide rsmSize={}", grid, rsmSize);
+    const size_t records = static_cast<size_t>(grid) * static_cast<size_t>(grid) * static_cast<size_t>(layers);
+    const size_t bytes = (records + static_cast<size_t>(VplWindow::size())) * sizeof(VplRecord);  // with the window padding
+    BOUNCE_TRY_VOID(gl::checkStorageBuffer(gl::Context::current()->info(), bytes, fmt::format("setting vplGrid={}", grid),
+                                           fmt::format("the VPL cache of {} VPLs ({} RSM layers)", records, layers)));
     // The extraction loops over a block's texels (and once per block row): block^2 + block iterations.
     const int block = rsmSize / grid;
     if (block * block + block > gl::kShaderLoopIterationBudget) {
@@ -38,7 +45,8 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
     BOUNCE_CHECK(grid > 0 && grid <= rsm.size() && rsm.size() % grid == 0, "VPL grid {} does not divide the RSM size {}",
                  grid, rsm.size());
     const int count = grid * grid * rsm.layers();
-    const size_t bytes = static_cast<size_t>(count) * sizeof(VplRecord);
+    // Padded to a whole uniform-block window past the last VPL (VplWindow::bind; issue 29 #13).
+    const size_t bytes = static_cast<size_t>(VplWindow::paddedRecords(count)) * sizeof(VplRecord);
     if (!m_buffer || m_buffer.size() != bytes) m_buffer = gl::Buffer::create("nichols.vplCache", bytes);
     m_count = count;
     if (grid != m_grid || rsm.layers() != m_layers) {
@@ -66,6 +74,8 @@ void RegularVpls::extract(const ReflectiveShadowMap& rsm, int grid) {
 
 std::vector<VplRecord> RegularVpls::download() const {
     std::vector<VplRecord> v(static_cast<size_t>(m_count));
+    // vpl_extract.comp wrote the cache as a storage buffer: the CPU read needs this bit (issue 29 #7).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (m_count > 0) m_buffer.download(0, v.size() * sizeof(VplRecord), v.data());
     return v;
 }

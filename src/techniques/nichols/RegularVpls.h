@@ -19,8 +19,10 @@ public:
     static Expected<RegularVpls> create();
     // The settings check of every technique with a regular VPL grid: grid divides rsmSize, and one
     // VPL's block of (rsmSize / grid)^2 texels fits the extraction's shader loop budget
-    // (gpu/ShaderLimits.h; blocks up to 128^2).
-    static Expected<void> checkGrid(int rsmSize, int grid);
+    // (gpu/ShaderLimits.h; blocks up to 128^2), and the cache of grid^2 x layers VPLs (the RSM's layers:
+    // ReflectiveShadowMap::layersFor) fits a storage buffer of this GL (issue 29 #6: vplGrid=2048 with a
+    // cube RSM is 1.2 GB).
+    static Expected<void> checkGrid(int rsmSize, int grid, int layers);
     // grid must divide rsm.size(); both are powers of two in practice (BOUNCE_CHECKed).
     void extract(const ReflectiveShadowMap& rsm, int grid);
 

@@ -2,9 +2,11 @@
 
 #include "core/Check.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 
 
@@ -18,6 +20,13 @@ constexpr size_t kCellHeaderBytes = (1 + kMaxCellLevels) * sizeof(uint32_t);
 
 GatherPass gatherPass(std::string_view name) {
     return name == "compute" ? GatherPass::Compute : GatherPass::Stencil;
+}
+
+int StencilledGather::s_maxGroupsXForTests = 0;
+
+int StencilledGather::maxGroupsX() {
+    const int device = gl::Context::current()->info().maxComputeWorkGroupCount[0];
+    return s_maxGroupsXForTests > 0 ? std::min(s_maxGroupsXForTests, device) : device;
 }
 
 Expected<StencilledGather> StencilledGather::create() {
@@ -66,6 +75,7 @@ void StencilledGather::prepare(FrameContext& ctx, int eyeCoarsest, const Pyramid
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_dispatch.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
+    m_cellArgs.set("u_maxGroupsX", static_cast<unsigned>(maxGroupsX()));
     m_cellArgs.use();
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);

@@ -26,6 +26,12 @@ GatherPass gatherPass(std::string_view name);
 class StencilledGather {
 public:
     static Expected<StencilledGather> create();
+    // Columns of the compute gather's 2D group grid: GL_MAX_COMPUTE_WORK_GROUP_COUNT[0], or less when a
+    // test sets s_maxGroupsXForTests (> 0) to see the grid wrap at llvmpipe's sizes (issue 29 #5).
+    static int maxGroupsX();
+    static int s_maxGroupsXForTests;
+    // gatherPass=compute: the last frame's indirect dispatch size (cell_args.comp's output), read back; tests.
+    const gl::Buffer& dispatchArgs() const { return m_dispatch; }
 
     // Timers "min-max-mipmap" and "stencil-setup": builds the eye pyramid down to eyeCoarsest and
     // marks each covered pixel at exactly one level of the buffer.

@@ -38,9 +38,15 @@ int VplWindow::bind(const gl::Buffer& cache, int first, int count) {
     GLint alignment = 0;
     glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
     BOUNCE_CHECK(alignment > 0 && offset % static_cast<size_t>(alignment) == 0, "VPL window offset {} aligned to {}", offset, alignment);
-    cache.bindRange(GL_UNIFORM_BUFFER, BINDING_UBO_VPL_WINDOW, offset,
-                    std::min(cache.size() - offset, static_cast<size_t>(records) * sizeof(VplRecord)));
+    const size_t range = static_cast<size_t>(records) * sizeof(VplRecord);
+    BOUNCE_CHECK(offset + range <= cache.size(), "VPL window [{}, {}) bytes inside the padded cache of {} bytes", offset,
+                 offset + range, cache.size());
+    cache.bindRange(GL_UNIFORM_BUFFER, BINDING_UBO_VPL_WINDOW, offset, range);
     return windowFirst;
+}
+
+int VplWindow::paddedRecords(int records) {
+    return (std::max(records, 1) - 1) / kAlignRecords * kAlignRecords + size();
 }
 
 }  // namespace bounce::nichols

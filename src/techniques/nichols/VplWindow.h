@@ -37,7 +37,12 @@ public:
     static int perDraw(int budget);
     // Binds the window holding records [first, first + count) of `cache` (clamped to its end) at
     // BINDING_UBO_VPL_WINDOW and returns the record its element 0 holds (the shader's u_windowFirst).
+    // `cache` must hold paddedRecords(records) records (its VPLs and the padding): every window's bound
+    // range is a whole window, the block's data size (GL: a shorter range is undefined; issue 29 #13).
     static int bind(const gl::Buffer& cache, int first, int count);
+    // Records a cache of `records` VPLs allocates: through the end of the window that starts at its last
+    // record's aligned start.
+    static int paddedRecords(int records);
 };
 
 }  // namespace bounce::nichols

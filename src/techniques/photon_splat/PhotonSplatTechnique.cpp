@@ -90,7 +90,7 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     if (m_blur != 0 && (m_blur < 3 || m_blur % 2 == 0))
         return makeError("setting blur={}: the blur kernel is 0 (off) or 3, 5, 7 or 9 pixels", m_blur);
     if (m_injection == "rsm") {
-        BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+        BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
         BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
         BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     }

@@ -3,6 +3,7 @@
 #include "core/Check.h"
 #include "core/Image.h"
 #include "gpu/Bindings.h"
+#include "gpu/Context.h"
 #include "techniques/radiosity/HemicubeMath.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -59,12 +60,22 @@ gpu::RadBodyGpu bodyOf(const glm::mat4& world, bool moving, bool animated) {
 
 }  // namespace
 
+Expected<void> RadiositySystem::checkMsaa(int msaa, const gl::GpuInfo& info) {
+    // The hemicubes are multisample colour and depth arrays (issue 29 #11: depth has its own limit,
+    // 8 on many AMD/Intel drivers where colour has more).
+    if (msaa > info.maxColorTextureSamples)
+        return makeError("setting msaa={} exceeds this GL's {} samples of a multisample colour texture (GL_MAX_COLOR_TEXTURE_SAMPLES)",
+                         msaa, info.maxColorTextureSamples);
+    if (msaa > info.maxDepthTextureSamples)
+        return makeError("setting msaa={} exceeds this GL's {} samples of a multisample depth texture (GL_MAX_DEPTH_TEXTURE_SAMPLES)",
+                         msaa, info.maxDepthTextureSamples);
+    return {};
+}
+
 Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& scene, const SystemOptions& opt) {
     if (opt.hemicubeSize < 4 || opt.hemicubeSize % 2 != 0) return makeError("hemicubeSize {} must be even and at least 4", opt.hemicubeSize);
     if (opt.backSize < 2 || opt.backSize % 2 != 0) return makeError("backHemicubeSize {} must be even and at least 2", opt.backSize);
-    GLint maxSamples = 1;
-    glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &maxSamples);
-    if (opt.msaa > maxSamples) return makeError("msaa {} exceeds this GL's {} colour samples", opt.msaa, maxSamples);
+    BOUNCE_TRY_VOID(checkMsaa(opt.msaa, gl::Context::current()->info()));
     BOUNCE_TRY(PatchModel model, PatchModel::build(scene, opt.patches));
 
     auto sys = std::unique_ptr<RadiositySystem>(new RadiositySystem());

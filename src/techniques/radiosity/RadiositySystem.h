@@ -5,6 +5,7 @@
 // or the mip-chain fallback), shooter selection and generation, the reconstruction passes and the
 // display. RadiosityTechnique.cpp's essay maps each to the thesis's passes and to GL 4.5.
 #include "core/Error.h"
+#include "gpu/GpuInfo.h"
 #include "gpu/GpuTimers.h"
 #include "gpu/Objects.h"
 #include "gpu/Program.h"
@@ -52,6 +53,8 @@ enum class ShooterAt { Front, Back };
 
 class RadiositySystem {
 public:
+    // One-line error when `msaa` exceeds the GL's colour or depth multisample-texture samples (issue 29 #11).
+    static Expected<void> checkMsaa(int msaa, const gl::GpuInfo& info);
     static Expected<std::unique_ptr<RadiositySystem>> create(const Scene& scene, const SystemOptions& options);
 
     const PatchModel& patches() const { return m_model; }

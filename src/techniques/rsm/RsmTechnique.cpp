@@ -46,8 +46,8 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
             PerProfile<int>{kVplBatchLlvmpipe, kVplBatchGpu});
 }
 
-Expected<void> RsmTechnique::setup(const SetupContext&) {
-    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+Expected<void> RsmTechnique::setup(const SetupContext& ctx) {
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));

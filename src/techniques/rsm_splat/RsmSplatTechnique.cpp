@@ -33,8 +33,8 @@ void RsmSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("targetFragments", m_targetFragments, "matched mode: fragments per splat (isr's gatherFragments)", 1.0f, 1e9f);
 }
 
-Expected<void> RsmSplatTechnique::setup(const SetupContext&) {
-    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid));
+Expected<void> RsmSplatTechnique::setup(const SetupContext& ctx) {
+    BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_splat, gl::Program::build({"rsmSplat", {{GL_VERTEX_SHADER, "techniques/rsm_splat/splat.vert"},
