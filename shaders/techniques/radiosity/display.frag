@@ -38,8 +38,8 @@ void main() {
     ivec2 texel = ivec2(floor(vec2(q.atlas.xy) + 0.5 + st * vec2(q.atlas.zw - 1u)));
     vec2 uv = radAtlasUv(q, st, u_atlasSize);
     bool oneTexel = textureSize(s_light, 0).x == 1;
-    vec3 b = u_nearest != 0 ? texelFetch(s_total, texel, 0).rgb : texture(s_total, uv).rgb;
-    vec3 d = oneTexel ? vec3(0.0) : u_nearest != 0 ? texelFetch(s_light, texel, 0).rgb : texture(s_light, uv).rgb;
+    vec3 b = u_nearest != 0 ? texelFetch(s_total, texel, 0).rgb : textureLod(s_total, uv, 0.0).rgb;  // one level: no derivatives (a discard precedes)
+    vec3 d = oneTexel ? vec3(0.0) : u_nearest != 0 ? texelFetch(s_light, texel, 0).rgb : textureLod(s_light, uv, 0.0).rgb;
     o_direct.rgb = q.emission.rgb;
     o_indirect.rgb = max(b - q.emission.rgb - d, vec3(0.0));
     if (masked) discard;

@@ -6,8 +6,10 @@
 //   of shooters an ID hemicube each and one RECONSTRUCTIONSHADER pass over all elements
 //   (Delta B_e = rho_e B_s^u A_s F_se with the disk approximation and the 4-nearest-pixel quad-ID
 //   visibility test).
-// Like the thesis's benchmarks the solution restarts from B = Bu = E every frame (sec. 5.2), which
-// makes it follow any motion; maxIterations bounds a frame's shooting quads.
+// Like the thesis's benchmarks the solution restarts from B = Bu = E whenever something moved (sec.
+// 5.2), which makes it follow any motion; maxIterations bounds a frame's shooting quads. A frame in
+// which nothing moved continues the last frame's shooting instead of repeating it (bounce's choice:
+// the same solution, reached over frames where one frame's budget does not converge).
 #include "techniques/radiosity_pr/ProgressiveRadiosityTechnique.h"
 
 namespace bounce {
@@ -27,7 +29,9 @@ void ShootingRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
 void ProgressiveRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->beginFrame(ctx.scene, ctx.time);
     m_system->computeLights(ctx.lights);
-    m_system->reset(RAD_RECEIVERS_ALL, true);
+    // Bodies include the lights: a moving light, object or emitter restarts the solution.
+    if (!m_started || m_system->anyMoving()) m_system->reset(RAD_RECEIVERS_ALL, true);
+    m_started = true;
     progressiveRefinement(ctx, m_maxIterations, 0, false);
     m_system->commit();
 }

@@ -16,6 +16,9 @@ public:
 
 protected:
     void solve(FrameContext& ctx) override;
+
+private:
+    bool m_started = false;  // frame 0 solved: a still frame continues it
 };
 
 }  // namespace bounce
