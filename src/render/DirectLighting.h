@@ -20,6 +20,8 @@ public:
                    const std::vector<size_t>& which);
 
 private:
+    void begin(const GBuffer& gbuffer, const gl::Texture& target);  // target bound, full-screen state
+    void addLight(const LightSet& lights, size_t i);                  // one additive light pass
     gl::Program m_emission, m_light;
     gl::Framebuffer m_fbo;
 };
