@@ -441,8 +441,9 @@ def soak_table(rec, path):
              "Live GL objects and buffer / texture bytes are what the wrappers of src/gpu/ hold "
              "(`gl::liveResources`), RSS is /proc/self/statm; about 100 samples per run (`--stats-every`). "
              "Warm-up is the first third of the frames; flat = GL objects and bytes never above their value at the "
-             f"end of warm-up, RSS growth after it at most {rec['rssGrowthBound'] / 1e6:.0f} MB (median of the first "
-             "and last three samples). llvmpipe keeps textures in system memory, so RSS includes them.", "",
+             f"end of warm-up, RSS growth after it at most {rec['rssGrowthBound'] / 1e6:.0f} MB (its floor: the smallest "
+             "sample of the last third against the smallest of the first third). llvmpipe keeps textures in system "
+             "memory, so RSS includes them.", "",
              "| technique | scene | frames | frame ms (wall) | GL objects (start → end of warm-up → end) | buffers MB | textures MB | "
              "RSS MB (end of warm-up → end) | RSS slope kB / 1000 frames | flat |",
              "|---|---|---|---|---|---|---|---|---|---|"]

@@ -17,6 +17,9 @@ skipped=0
 # here), on the two Cornell boxes of the thesis's kind only. `bounce render` runs any pair on request.
 radiosity_demo=(--set elementSize=0.2 --set dynamicElementSize=0.2 --set hemicubeSize=32)
 start=$(date +%s)
+# Each pair's wall milliseconds (render or refusal), for bench/demo/run.py's record.
+times="$out/demo-times.tsv"
+printf 'scene\ttechnique\tstatus\tms\n' > "$times"
 for s in $scenes; do
   for t in $techniques; do
     extra=()
@@ -26,14 +29,17 @@ for s in $scenes; do
           radiosity-gather:cornell-box-area|radiosity-gather:cornell-box) ;;
           radiosity-gather:*|*:atrium|*:courtyard|*:furnished-room)
             echo "demo: skipped $s x $t: too many elements for the demo's time on llvmpipe"
+            printf '%s\t%s\tskipped\t0\n' "$s" "$t" >> "$times"
             skipped=$((skipped + 1))
             continue ;;
         esac
         extra=("${radiosity_demo[@]}") ;;
     esac
     status=0
+    pair_start=$(date +%s%N)
     message=$("$bounce" render --scene "$s" --technique "$t" --size "$size" --frames 1 "${extra[@]}" \
       --out "$out/$s-$t.png" --stats "$out/$s-$t.json" 2>&1) || status=$?
+    printf '%s\t%s\t%s\t%s\n' "$s" "$t" "$status" "$(( ($(date +%s%N) - pair_start) / 1000000 ))" >> "$times"
     if [ "$status" -eq 1 ]; then
       echo "demo: skipped $s x $t: $message"
       skipped=$((skipped + 1))
@@ -47,6 +53,9 @@ for s in $scenes; do
   done
 done
 echo "demo: images are in $(cd "$out" && pwd)/ ($(ls "$out"/*.png | wc -l) PNG files, run records beside them; $skipped pairs skipped; $(( $(date +%s) - start )) s)"
+
+# bench/demo/run.py --render-only times the rendering part alone.
+if [ -n "${BOUNCE_DEMO_RENDER_ONLY:-}" ]; then exit 0; fi
 
 # A small built-in study (scripts/demo-study.json, docs/studies.md): every technique with two settings
 # on three scenes at 64x64, compared with shared references, temporal metrics, then the report page.
