@@ -600,10 +600,41 @@ def fidelity_table(rec, path):
     return "\n".join(lines)
 
 
+def large_scene_table(rec, path):
+    """Issue 30: every technique's frame times at its defaults on the Sponza-class scene, sun and sky."""
+    lights = list(rec["results"].keys())
+    techniques = list(next(iter(rec["results"].values())).keys())
+    lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); `{rec['command']}`: "
+             f"`{rec['scene']}` at {rec['size']}², each technique at its defaults, {rec['frames']} frames (`radiosity-gather` one), "
+             "one process each. Cells: first frame ms (shader compilation, first build) / median of the later frames ms "
+             f"(wall, renderFrame to its glFinish); **bold** where a later frame exceeds the budget of the technique's kind "
+             f"({rec['gpuBudgetMs']:.0f} ms for the GPU techniques, {rec['radiosityBudgetMs']:.0f} ms for the progressive radiosity "
+             "methods; the gather is timed, not budgeted); — a one-line refusal; *stopped* a run past "
+             f"{rec.get('runTimeoutSeconds', 0):.0f} s.", "",
+             "| technique | " + " | ".join(f"`light={l}`" for l in lights) + " |", "|---|" + "---|" * len(lights)]
+    for t in techniques:
+        cells = []
+        for l in lights:
+            e = rec["results"][l].get(t, {})
+            if "refused" in e:
+                cells.append("—")
+            elif "timedOut" in e:
+                cells.append("*stopped*")
+            elif "error" in e:
+                cells.append("error: " + e["error"])
+            else:
+                later = "–" if e["medianLaterMs"] is None else f"{e['medianLaterMs']:.0f}"
+                cell = f"{e['firstFrameMs']:.0f} / {later}"
+                cells.append(f"**{cell}**" if e["withinBudget"] is False else cell)
+        lines.append(f"| `{t}` | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table,
               "area-light": area_light_table, "vpl-visibility": vpl_visibility_table,
               "iir": iir_table, "nichols": nichols_table, "nichols-cap": nichols_cap_table, "foundation": foundation_table, "soak": soak_table,
-              "interactive": interactive_table, "fidelity": fidelity_table}
+              "interactive": interactive_table, "fidelity": fidelity_table,
+              "large-scene": large_scene_table}
 
 
 def main():
