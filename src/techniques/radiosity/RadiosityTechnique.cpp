@@ -96,7 +96,9 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
 
 void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     m_frameShooters = m_frameIterations = m_frameMovingPatches = m_frameRedistributionHemicubes = 0;
+    m_budgetHit = false;
     m_system->resetCounters();
+    m_frameStart = std::chrono::steady_clock::now();
     {
         auto s = ctx.timers.scope("radiosity.solve");
         solve(ctx);
@@ -113,6 +115,7 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     ctx.counters["shooters"] = m_frameShooters;
     ctx.counters["iterations"] = m_frameIterations;
     ctx.counters["converged"] = m_converged ? 1.0 : 0.0;
+    ctx.counters["budgetHit"] = m_budgetHit ? 1.0 : 0.0;
     ctx.counters["movingElements"] = static_cast<double>(m_system->movingElementCount());
     ctx.counters["movingPatches"] = m_frameMovingPatches;
     ctx.counters["redistributionHemicubes"] = m_frameRedistributionHemicubes;
@@ -152,6 +155,9 @@ void RadiosityTechnique::shootBatches(FrameContext& ctx, uint32_t count, int mod
 void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterations, int minIterations, bool removeMoving) {
     m_converged = false;
     const auto& quads = m_system->patches().quads();
+    using Clock = std::chrono::steady_clock;
+    const auto msSince = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    const Clock::time_point loopStart = Clock::now();
     for (int it = 0; it < maxIterations; ++it) {
         std::vector<QuadStats> stats;
         {
@@ -173,6 +179,16 @@ void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterati
         if (best < 0 || (bestMean < m_threshold * m_maxEmission && it >= minIterations)) {
             m_converged = true;
             break;
+        }
+        // The frame's shooting budget. quadStats() read back the sums the previous iterations' passes
+        // wrote, so the CPU clock here has waited for their GPU work: loopStart..now is `it` whole
+        // iterations. Stop when one more of this call's mean iteration would end past the budget.
+        if (m_frameBudgetMs > 0.0f && it >= std::max(minIterations, 1)) {
+            const double perIteration = msSince(loopStart) / it;
+            if (msSince(m_frameStart) + perIteration > static_cast<double>(m_frameBudgetMs)) {
+                m_budgetHit = true;
+                break;
+            }
         }
         const auto rects = subdivide(static_cast<uint32_t>(best), glm::pi<float>() * std::abs(luminance(stats[best].unshot)));
         m_system->loadShooters(rects);

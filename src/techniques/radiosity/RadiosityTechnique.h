@@ -7,6 +7,7 @@
 #include "techniques/radiosity/RadiositySystem.h"
 
 #include <array>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -37,6 +38,14 @@ public:
     uint32_t lastIterations() const { return m_frameIterations; }
     uint32_t lastMovingPatches() const { return m_frameMovingPatches; }
     uint32_t lastRedistributionHemicubes() const { return m_frameRedistributionHemicubes; }
+    bool lastConverged() const { return m_converged; }
+    bool lastBudgetHit() const { return m_budgetHit; }  // the last frame's shooting stopped on frameBudgetMs
+
+    // The shooting methods' per-frame shooting budget (frameBudgetMs): the CPU wall time from the start
+    // of a frame's solve after which no further shooting iteration starts (bounce's, issue 30: the
+    // thesis's shooter batches spread over frames). Chosen so that a frame of the larger built-in rooms
+    // stays near 2 s at 256^2 on llvmpipe (docs/techniques/radiosity.md, "Per-frame shooting budget").
+    static constexpr float kDefaultFrameBudgetMs = 1500.0f;
 
 protected:
     // One frame of the method: update the solution in the system's atlas.
@@ -52,7 +61,9 @@ protected:
     virtual HemicubeUse hemicubeUse() const { return {}; }
 
     // Alg. 4.2 SHOOTINGITERATION until the brightest quad's mean unshot radiance is below the
-    // threshold or `maxIterations` quads have shot (at least `minIterations`, even if converged).
+    // threshold or `maxIterations` quads have shot (at least `minIterations`, even if converged), or
+    // until the next iteration would end past the frame's budget (frameBudgetMs; at least one iteration
+    // per call, so that the solution always advances; m_budgetHit then).
     // removeMoving: the moving bodies take no part (cross redistribution's initial solution).
     void progressiveRefinement(FrameContext& ctx, int maxIterations, int minIterations, bool removeMoving);
     // GENERATESHOOTINGPATCHES' subdivision: a quad carrying `flux` (W, luminance) is cut into about
@@ -69,12 +80,15 @@ protected:
     int m_maxIterations = 400;
     float m_shooterFlux = 0.003f;
     int m_batch = 10;
+    float m_frameBudgetMs = kDefaultFrameBudgetMs;  // 0: no time budget (maxIterations alone)
     std::string m_view{"bilinear"};
 
     uint32_t m_frameHemicubes = 0, m_frameShooters = 0, m_frameIterations = 0;
     uint32_t m_frameMovingPatches = 0;  // shooting patches of M in this frame's redistribution
     uint32_t m_frameRedistributionHemicubes = 0;  // hemicubes of the redistribution alone (incremental, cross)
     bool m_converged = false;
+    bool m_budgetHit = false;
+    std::chrono::steady_clock::time_point m_frameStart{};  // the start of this frame's solve (the budget's origin)
     float m_maxEmission = 0.0f;  // brightest emitter radiance (luminance), W/(m^2 sr)
 };
 
