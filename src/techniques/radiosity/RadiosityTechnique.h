@@ -40,12 +40,14 @@ public:
     uint32_t lastRedistributionHemicubes() const { return m_frameRedistributionHemicubes; }
     bool lastConverged() const { return m_converged; }
     bool lastBudgetHit() const { return m_budgetHit; }  // the last frame's shooting stopped on frameBudgetMs
+    uint32_t lastShooters() const { return m_frameShooters; }
 
     // The shooting methods' per-frame shooting budget (frameBudgetMs): the CPU wall time from the start
-    // of a frame's solve after which no further shooting iteration starts (bounce's, issue 30: the
+    // of a frame's solve after which no further batch of shooters starts (bounce's, issue 30: the
     // thesis's shooter batches spread over frames). Chosen so that a frame of the larger built-in rooms
-    // stays near 2 s at 256^2 on llvmpipe (docs/techniques/radiosity.md, "Per-frame shooting budget").
-    static constexpr float kDefaultFrameBudgetMs = 1500.0f;
+    // stays near 2 s at 256^2 on llvmpipe, the frame's other passes included (docs/techniques/
+    // radiosity.md, "Per-frame shooting budget").
+    static constexpr float kDefaultFrameBudgetMs = 1200.0f;
 
 protected:
     // One frame of the method: update the solution in the system's atlas.
@@ -62,15 +64,30 @@ protected:
 
     // Alg. 4.2 SHOOTINGITERATION until the brightest quad's mean unshot radiance is below the
     // threshold or `maxIterations` quads have shot (at least `minIterations`, even if converged), or
-    // until the next iteration would end past the frame's budget (frameBudgetMs; at least one iteration
-    // per call, so that the solution always advances; m_budgetHit then).
+    // until the next batch of shooters would end past the frame's budget (frameBudgetMs; m_budgetHit
+    // then): the rest of that quad's batches are pending and shot first by the next call. The first
+    // batch of a call always runs, so the solution always advances.
     // removeMoving: the moving bodies take no part (cross redistribution's initial solution).
     void progressiveRefinement(FrameContext& ctx, int maxIterations, int minIterations, bool removeMoving);
+    // Shoots the pending batches of the last iteration, all of them (before a redistribution, which
+    // reuses the shooter buffer and must see that quad's light shot), or, `budgeted`, as many as the
+    // frame's budget allows (`shotAny`: a batch already ran in this call). True when none is left.
+    // `old`: hemicubes placed and drawn with the bodies of the last commit.
+    bool shootPending(FrameContext& ctx, bool budgeted, bool& shotAny, bool old = false);
+    // The frame start of the redistributing methods (incremental, cross after its insertion): the
+    // bodies at this frame's time; if they moved since the last commit while batches are pending, those
+    // are shot first, whole, in the scene as it was when their quad was chosen (the bodies of the last
+    // commit: shooter and receiver positions, hemicubes and the drawn scene), so that the
+    // redistribution, which corrects the old configuration's light to the new one, sees that quad's
+    // light shot in the old configuration.
+    void beginFrameFinishingPending(FrameContext& ctx);
+    void commitFrame(const FrameContext& ctx);  // m_system->commit(), remembering the frame's time
+    void dropPending() { m_pending = {}; }  // a restart (B = Bu = E) makes the pending shooters void
     // GENERATESHOOTINGPATCHES' subdivision: a quad carrying `flux` (W, luminance) is cut into about
     // flux / (shooterFlux x emitted flux) patches, at most one per element.
     std::vector<radiosity::ShooterRect> subdivide(uint32_t quad, float flux) const;
-    // Renders the ID hemicubes of shooters [0, n) in batches and runs `mode` on `receivers`.
-    void shootBatches(FrameContext& ctx, uint32_t count, int mode, int receivers, bool removeMoving);
+    // Whether the frame's budget lets a batch start now (always when `guaranteed` or without a budget).
+    bool budgetAllows(bool guaranteed) const;
 
     std::unique_ptr<radiosity::RadiositySystem> m_system;
     radiosity::SystemOptions m_options;
@@ -89,6 +106,13 @@ protected:
     bool m_converged = false;
     bool m_budgetHit = false;
     std::chrono::steady_clock::time_point m_frameStart{};  // the start of this frame's solve (the budget's origin)
+    float m_commitTime = 0.0f;  // the time of the last commit's frame
+    double m_batchMs = 0.0;  // the last batch's measured wall time (glFinish), the next one's predicted cost
+    // Shooters [next, count) of the shooter buffer not yet shot: the rest of an iteration the budget cut.
+    struct Pending {
+        uint32_t count = 0, next = 0;
+        bool removeMoving = false;
+    } m_pending;
     float m_maxEmission = 0.0f;  // brightest emitter radiance (luminance), W/(m^2 sr)
 };
 

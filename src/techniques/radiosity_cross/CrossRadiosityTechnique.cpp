@@ -94,16 +94,16 @@ void CrossRadiosityTechnique::solve(FrameContext& ctx) {
         if (m_system->anyMoving()) redistribute(ctx, true);
         m_system->setMovingOverride(nullptr);
         if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
-        m_system->commit();
+        commitFrame(ctx);
         m_inserted = true;
         return;
     }
-    m_system->beginFrame(ctx.scene, ctx.time);
+    beginFrameFinishingPending(ctx);  // a quad the last frame's budget cut shoots the rest of its light first
     m_system->computeLights(ctx.lights);
     if (m_system->anyMoving()) redistribute(ctx, false);  // M reset to E + D_new
     m_system->applyLights(RAD_RECEIVERS_ALL);             // the static elements' change of D, as unshot
     if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
-    m_system->commit();
+    commitFrame(ctx);
 }
 
 void CrossRadiosityTechnique::redistribute(FrameContext& ctx, bool insert) {

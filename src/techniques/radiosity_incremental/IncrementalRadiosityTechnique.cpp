@@ -31,7 +31,7 @@ namespace bounce {
 using namespace radiosity;
 
 void IncrementalRadiosityTechnique::solve(FrameContext& ctx) {
-    m_system->beginFrame(ctx.scene, ctx.time);
+    beginFrameFinishingPending(ctx);  // a quad the last frame's budget cut shoots the rest of its light first
     m_system->computeLights(ctx.lights);
     if (!m_initialised) {
         m_system->reset(RAD_RECEIVERS_ALL, true);
@@ -45,7 +45,7 @@ void IncrementalRadiosityTechnique::solve(FrameContext& ctx) {
         m_system->applyLights(RAD_RECEIVERS_ALL);
         progressiveRefinement(ctx, m_maxIterations, 0, false);
     }
-    m_system->commit();
+    commitFrame(ctx);
 }
 
 void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {

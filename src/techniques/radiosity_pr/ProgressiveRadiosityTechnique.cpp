@@ -35,7 +35,10 @@ void ProgressiveRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->beginFrame(ctx.scene, ctx.time);
     m_system->computeLights(ctx.lights);
     // Bodies include the lights: a moving light, object or emitter restarts the solution.
-    if (!m_started || m_system->anyMoving()) m_system->reset(RAD_RECEIVERS_ALL, true);
+    if (!m_started || m_system->anyMoving()) {
+        m_system->reset(RAD_RECEIVERS_ALL, true);
+        dropPending();  // the batches the last frame's budget left belong to the solution just dropped
+    }
     m_started = true;
     progressiveRefinement(ctx, m_maxIterations, 0, false);
     m_system->commit();
