@@ -46,8 +46,10 @@ public:
     // of a frame's solve after which no further batch of shooters starts (bounce's, issue 30: the
     // thesis's shooter batches spread over frames). Chosen so that a frame of the larger built-in rooms
     // stays near 2 s at 256^2 on llvmpipe, the frame's other passes included (docs/techniques/
-    // radiosity.md, "Per-frame shooting budget").
+    // radiosity.md, "Per-frame shooting budget"). On a GPU profile (BOUNCE_PROFILE / the context's):
+    // 33.3 ms, 30 frames a second, as viewer.frameBudgetMs.
     static constexpr float kDefaultFrameBudgetMs = 1200.0f;
+    static constexpr float kGpuFrameBudgetMs = 33.3f;
 
 protected:
     // One frame of the method: update the solution in the system's atlas.

@@ -24,9 +24,10 @@ void ShootingRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
     v.field("threshold", m_threshold, "convergence: stop when the brightest quad's mean unshot radiance is below this fraction of the brightest emitter's (thesis: value not given)", 0.0f, 1.0f);
     v.field("maxIterations", m_maxIterations, "shooting quads per frame at most (Alg. 4.2 iterations)", 1, 1000000);
     v.field("frameBudgetMs", m_frameBudgetMs,
-            "per-frame shooting budget, ms of CPU wall time from the frame's start: no shooting iteration starts that would end "
-            "past it (at least one per frame); the solution converges over frames (bounce's; thesis: shooter batches). 0: off",
-            0.0f, 1e7f);
+            "per-frame shooting budget, ms of CPU wall time from the start of the frame's solve: no batch of shooters starts that "
+            "would end past it (the first of a frame always runs; a cut quad's rest is shot next frame), so the solution converges "
+            "over frames (bounce's; thesis: shooter batches). 0: off",
+            0.0f, 1e7f, PerProfile<float>{kDefaultFrameBudgetMs, kGpuFrameBudgetMs});
     v.field("shooterFlux", m_shooterFlux, "dynamic shooter subdivision: a patch carries at most about this fraction of the emitted flux (thesis: mapping not given)", 1e-6f, 1.0f);
     v.field("batch", m_batch, "shooters per reconstruction pass (thesis benchmarks: 10)", 1, RAD_MAX_BATCH);
 }
