@@ -4,12 +4,13 @@
 // cross's initial solutions spread over frames too, and a redistribution on an unconverged solution
 // still ends at the right solution. The budget is counted in batches, never timed: a budget of
 // kOneBatch ms stops every frame after its one guaranteed batch of shooters, whatever the host's speed.
-// Also the run record's first-frame field (app/RunRecord.h).
+// Also the run record's first-frame field (app/RunRecord.h) and radiosity-gather's progress report.
 #include "GpuTestSupport.h"
 #include "NicholsTestSupport.h"
 #include "app/RunRecord.h"
 #include "scene/MeshBuilder.h"
 #include "techniques/radiosity/RadiosityTechnique.h"
+#include "techniques/radiosity_gather/GatherRadiosityTechnique.h"
 
 #include <algorithm>
 #include <cmath>
@@ -178,4 +179,29 @@ TEST_F(RadiosityBudgetGpuTest, FirstFrameIsRecordedApartFromTheMedianOfTheRest) 
     // One frame: no frames after it, an empty median (never frame 0's own).
     const nlohmann::json single = renderRunRecord(scene, *p, {frames[0]}, gputest::sharedContext()->info(), {});
     EXPECT_TRUE(single["median_ms_excluding_first"].empty());
+}
+
+TEST_F(RadiosityBudgetGpuTest, GatherSaysHowManyHemicubesAndHowLong) {
+    // radiosity-gather with progress=on: an estimate after the first batch naming the hemicubes it will
+    // render (gather elements x bounces, the count it then renders), a total at the end; off: silent.
+    const Scene scene = builtin("cornell-box-area");
+    for (const char* progress : {"on", "off"}) {
+        SCOPED_TRACE(progress);
+        auto p = makePipeline(scene, "radiosity-gather",
+                              {{"elementSize", "0.2"}, {"bounces", "2"}, {"hemicubeSize", "8"}, {"progress", progress}}, 16);
+        p->renderFrame(0);
+        auto& g = dynamic_cast<GatherRadiosityTechnique&>(p->technique());
+        const uint32_t elements = g.system().gatherElementCount();
+        EXPECT_EQ(g.lastHemicubes(), 2 * elements);
+        const auto& lines = g.lastProgressLines();
+        if (std::string(progress) == "off") {
+            EXPECT_TRUE(lines.empty());
+            continue;
+        }
+        ASSERT_GE(lines.size(), 2u);
+        const std::string estimate = std::to_string(2 * elements) + " hemicubes (" + std::to_string(elements) + " elements x 2 sweeps)";
+        EXPECT_NE(lines.front().find(estimate), std::string::npos) << lines.front();
+        EXPECT_NE(lines.front().find(" s"), std::string::npos) << lines.front();
+        EXPECT_NE(lines.back().find(std::to_string(2 * elements) + " hemicubes in "), std::string::npos) << lines.back();
+    }
 }

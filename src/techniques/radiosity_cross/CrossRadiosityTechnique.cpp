@@ -17,7 +17,7 @@
 // Initial solution (sec. 4.5.2): progressive refinement with the animated bodies REMOVED (not drawn
 // into hemicubes, not shooting or receiving), then one insertion redistribution (new terms only).
 // Under the per-frame shooting budget (frameBudgetMs) the M-free refinement spans as many frames as it
-// needs; the insertion follows in the frame it converges.
+// needs; the insertion follows in the frame it converges (or stops on maxIterations).
 // Regular progressive propagation (sec. 3.1: "ordinary progressive iterations are still needed
 // afterwards to propagate the changes"; sec. 3.3.4: the radiosity gathered during a redistribution "is
 // shot during the regular progressive propagation"): after the insertion and after every
@@ -86,11 +86,12 @@ void CrossRadiosityTechnique::solve(FrameContext& ctx) {
         m_system->applyLights(RAD_RECEIVERS_STATIC);
     }
     if (!m_inserted) {
-        // Sec. 4.5.2: PR with M removed to convergence, then one insertion. Where the frame's budget
-        // ends first, the insertion waits for a later frame (M shows its direct light only until then),
-        // so the converged solution is the same sequence of shots whatever the budget.
+        // Sec. 4.5.2: PR with M removed to convergence (or maxIterations, as before the budget), then
+        // one insertion. Where the frame's time budget ends it first, the insertion waits for a later
+        // frame (M shows its direct light only until then), so what is inserted into does not depend on
+        // the host's speed.
         progressiveRefinement(ctx, m_maxIterations, 0, true);
-        if (!m_converged) return;
+        if (m_budgetHit) return;
         if (m_system->anyMoving()) redistribute(ctx, true);
         m_system->setMovingOverride(nullptr);
         if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
