@@ -12,7 +12,8 @@
 // Deviation: elements in RGBA32F (thesis: RGBA16F), shared with the other methods.
 // Progress (bounce's, issue 30): the gather is the expensive reference (minutes on the larger scenes
 // on llvmpipe), so with `progress` on (auto: stderr is a terminal) it says up front how long it will
-// take (hemicubes x the time per hemicube measured over the first batch) and then, at most every
+// take (hemicubes x the time per hemicube measured over the first batch; auto: only for a gather
+// estimated at kProgressIntervalS or more) and then, at most every
 // kProgressIntervalS, the hemicubes done, the elapsed and the estimated remaining time, on stderr.
 // Measuring needs the GPU's work done: glFinish after each batch, only while reporting.
 #include "techniques/radiosity_gather/GatherRadiosityTechnique.h"
@@ -31,7 +32,8 @@ void GatherRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
     v.field("msaa", m_msaa, "samples per radiosity-hemicube pixel (thesis sec. 5.3.1: 4)", 1, 16);
     v.field("integration", m_integration, "compute: parallel reduction (thesis's choice); mipmap: the DX10 fallback (1x1 mip level x pixel count)", kIntegrations);
     v.field("progress", m_progress,
-            "progress and estimated time on stderr while gathering, at most a line every 2 s: auto (when stderr is a terminal), on, off",
+            "progress and estimated time on stderr while gathering, at most a line every 2 s: auto (when stderr is a terminal and the "
+            "gather is estimated at 2 s or more), on, off",
             kProgress);
 }
 
@@ -46,6 +48,9 @@ void GatherRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->reset(RAD_RECEIVERS_ALL, true);
     m_progressLines.clear();
     const bool report = m_progress == "on" || (m_progress == "auto" && ::isatty(STDERR_FILENO) != 0);
+    // auto stays silent for a gather estimated shorter than one progress interval (the viewer's
+    // frame-by-frame gathers at coarse settings); on always reports.
+    const bool always = m_progress == "on";
     if (!report) {
         for (int b = 0; b < m_bounces; ++b) m_system->gatherSweep(ctx.drawer, ctx.timers);
     } else {
@@ -53,7 +58,9 @@ void GatherRadiosityTechnique::solve(FrameContext& ctx) {
         const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
         const uint64_t perSweep = m_system->gatherElementCount();
         const uint64_t total = perSweep * static_cast<uint64_t>(m_bounces);
+        bool speak = always;
         const auto emit = [&](std::string line) {
+            if (!speak) return;
             std::fprintf(stderr, "%s\n", line.c_str());
             std::fflush(stderr);
             m_progressLines.push_back(std::move(line));
@@ -71,6 +78,7 @@ void GatherRadiosityTechnique::solve(FrameContext& ctx) {
                 const double perHemicube = elapsed / static_cast<double>(done);
                 const double remaining = perHemicube * static_cast<double>(total - done);
                 if (!estimated) {
+                    speak = speak || perHemicube * static_cast<double>(total) >= kProgressIntervalS;
                     emit(fmt::format("radiosity-gather: {} hemicubes ({} elements x {} sweeps), {:.1f} ms each over the first "
                                      "batch: about {:.0f} s",
                                      total, perSweep, m_bounces, 1e3 * perHemicube, perHemicube * static_cast<double>(total)));
