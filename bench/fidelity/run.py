@@ -33,6 +33,10 @@ compare = functools.partial(compare_metrics, keys=("energy", "relMse", "relRms",
 # (the rest are complete in their first frame). iir maintains its VPL set incrementally from frame 0;
 # the progressive radiosity methods shoot a budget per frame until converged.
 FRAMES = {"radiosity-pr": 8, "radiosity-incremental": 8, "radiosity-cross": 8}
+# Settings other than the defaults: the shooting radiosity methods' time budget per frame is off (a time
+# budget makes the frame a solution reaches depend on the host's speed; maxIterations alone bounds the
+# frames, as before the budget; docs/techniques/radiosity.md, "Per-frame shooting budget").
+SETTINGS = {t: {"frameBudgetMs": "0"} for t in FRAMES}
 
 # The bounds every technique meets at its defaults (DEVELOPERS.md, issue 28).
 ENERGY_TOLERANCE = 0.15
@@ -66,6 +70,8 @@ def scenes(bounce):
 def render(bounce, scene, technique, size, frames, component, out, start=0):
     cmd = [bounce, "render", "--scene", scene, "--technique", technique, "--size", f"{size}x{size}", "--frames",
            str(frames), "--component", component, "--out", out]
+    for k, v in SETTINGS.get(technique, {}).items():
+        cmd += ["--set", f"{k}={v}"]
     if start:
         cmd += ["--start-frame", str(start)]
     t0 = time.monotonic()
@@ -89,7 +95,8 @@ def main():
     scene_list = [s for s in scenes(bounce) if not only_scenes or s in only_scenes.split(",")]
     techniques = [t for t in scopes if not only_techniques or t in only_techniques.split(",")]
     record = new_record(name, " ".join(["bench/fidelity/run.py"] + sys.argv[1:]), bounce)
-    record.update({"size": size, "spp": spp, "frames": FRAMES, "energyTolerance": ENERGY_TOLERANCE, "results": {}})
+    record.update({"size": size, "spp": spp, "frames": FRAMES, "settings": SETTINGS, "energyTolerance": ENERGY_TOLERANCE,
+                   "results": {}})
     with tempfile.TemporaryDirectory() as tmp:
         refs = {}
 

@@ -36,6 +36,8 @@ VARIANTS = {"defaults": {}, "crossGrid=8": {"crossGrid": "8"}, "crossGrid=16": {
 
 def render(bounce, technique, frames, start, settings, out):
     cmd = [bounce, "render", "--technique", technique, "--frames", str(frames), "--start-frame", str(start), "--out", out] + BASE
+    if technique != "radiosity-gather":  # whole frames, not a host-dependent time budget's share
+        settings = {"frameBudgetMs": "0", **settings}
     for k, v in settings.items():
         cmd += ["--set", f"{k}={v}"]
     subprocess.run(cmd, check=True, capture_output=True)

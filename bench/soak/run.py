@@ -51,8 +51,9 @@ CHEAP_SETTINGS = {"radiosity-gather": ["elementSize=0.1", "dynamicElementSize=0.
 # so the per-frame GPU timer scopes (a pool of query objects as large as the busiest frame's, a
 # high-water mark by design) stop growing after the first frame; on the spot-lit cornell-box-dynamic
 # PR's frames otherwise vary in iterations and shooter batches and the pool grew after warm-up.
+# frameBudgetMs=0: no time budget, which would cut frames at a host-dependent batch.
 RADIOSITY_CHECK = ["elementSize=0.1", "dynamicElementSize=0.1", "hemicubeSize=16", "maxIterations=40", "threshold=0",
-                   "shooterFlux=1"]
+                   "shooterFlux=1", "frameBudgetMs=0"]
 CHECK_SETTINGS = {"radiosity-pr": RADIOSITY_CHECK, "radiosity-incremental": RADIOSITY_CHECK,
                   "radiosity-cross": RADIOSITY_CHECK}
 # A run shortened by the time budget keeps at least this many frames (a third of them warm-up).

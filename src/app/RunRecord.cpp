@@ -51,6 +51,19 @@ nlohmann::json medianPassTimes(const std::vector<FrameStats>& frames) {
     return out;
 }
 
+nlohmann::json firstFrameTimes(const std::vector<FrameStats>& frames) {
+    nlohmann::json out = nlohmann::json::object();
+    if (frames.empty()) return out;
+    for (const auto& p : frames.front().passes) out[p.name] = p.milliseconds;
+    out["cpu"] = frames.front().cpuMilliseconds;
+    return out;
+}
+
+nlohmann::json medianPassTimesExcludingFirst(const std::vector<FrameStats>& frames) {
+    if (frames.size() < 2) return nlohmann::json::object();
+    return medianPassTimes(std::vector<FrameStats>(frames.begin() + 1, frames.end()));
+}
+
 nlohmann::json renderRunRecord(const Scene& scene, Pipeline& pipeline, const std::vector<FrameStats>& frames,
                                const gl::GpuInfo& gpu, const nlohmann::json& extra) {
     render::RenderSettings renderSettings = pipeline.renderSettings();
@@ -66,6 +79,8 @@ nlohmann::json renderRunRecord(const Scene& scene, Pipeline& pipeline, const std
         {"gpu", gpuInfoJson(gpu)},
         {"frames", frameList},
         {"median_ms", medianPassTimes(frames)},
+        {"first_frame_ms", firstFrameTimes(frames)},
+        {"median_ms_excluding_first", medianPassTimesExcludingFirst(frames)},
     };
     for (const auto& [k, v] : extra.items()) record[k] = v;
     return record;

@@ -31,8 +31,17 @@ constexpr double kEnergyTolerance = 0.15;  // DEVELOPERS.md: within +-15 % of th
 
 // Frames before the image is taken (bench/fidelity/run.py's FRAMES): the progressive radiosity
 // methods shoot a budget per frame until converged; everything else is complete in frame 0.
-int framesOf(const std::string& technique) {
-    return technique == "radiosity-pr" || technique == "radiosity-incremental" || technique == "radiosity-cross" ? 8 : 1;
+bool shootsRadiosity(const std::string& technique) {
+    return technique == "radiosity-pr" || technique == "radiosity-incremental" || technique == "radiosity-cross";
+}
+int framesOf(const std::string& technique) { return shootsRadiosity(technique) ? 8 : 1; }
+
+// The defaults, except the shooting radiosity methods' time budget per frame (frameBudgetMs), off as in
+// bench/fidelity/run.py: a time budget makes the frame a solution reaches depend on the host's speed;
+// maxIterations alone bounds the frames (docs/techniques/radiosity.md, "Per-frame shooting budget").
+std::map<std::string, std::string> settingsOf(const std::string& technique) {
+    if (shootsRadiosity(technique)) return {{"frameBudgetMs", "0"}};
+    return {};
 }
 
 // Default radiosity takes minutes on llvmpipe for most scenes' elements (the gather, the expensive
@@ -110,7 +119,7 @@ const Image& reference(const std::string& sceneName, const Scene& scene, const R
 
 // Frames [first, last] in order; the image of the last.
 Image renderComponent(const Scene& scene, const std::string& technique, Component component, uint32_t first, uint32_t last) {
-    auto p = makePipeline(scene, technique, {}, kSize);
+    auto p = makePipeline(scene, technique, settingsOf(technique), kSize);
     for (uint32_t f = first; f <= last; ++f) p->renderFrame(f);
     return p->readback(component);
 }

@@ -435,10 +435,14 @@ void RadiositySystem::renderHemicubes(render::SceneDrawer& drawer, HemicubeKind 
     }
 }
 
-void RadiositySystem::gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& timers) {
+uint32_t RadiositySystem::gatherElementCount() const {
     // Light quads come last and reflect nothing: gather at the scene's elements only.
     const Quad& firstLight = m_model.quads()[std::min<size_t>(m_model.firstLightQuad(), m_model.quads().size() - 1)];
-    const uint32_t elements = m_model.lightQuadCount() > 0 ? firstLight.firstElement : static_cast<uint32_t>(m_model.elements().size());
+    return m_model.lightQuadCount() > 0 ? firstLight.firstElement : static_cast<uint32_t>(m_model.elements().size());
+}
+
+void RadiositySystem::gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& timers, const std::function<void(uint32_t)>& afterBatch) {
+    const uint32_t elements = gatherElementCount();
     const int R = m_options.hemicubeSize;
     for (uint32_t first = 0; first < elements; first += kBatch) {
         const uint32_t count = std::min(kBatch, elements - first);
@@ -473,6 +477,7 @@ void RadiositySystem::gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& ti
         }
         glDispatchCompute(count, 1, 1);
         barrier();
+        if (afterBatch) afterBatch(first + count);
     }
 }
 

@@ -16,6 +16,7 @@
 #include "techniques/radiosity/PatchModel.h"
 #include "techniques/radiosity/radiosity_shared.h"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -80,8 +81,11 @@ public:
     void applyLights(int receivers);
     bool hasPunctualLights() const { return !m_punctual.empty(); }
     float maxLightRadiance() const { return m_maxLightRadiance; }  // luminance, unshadowed, at t = 0
-    // One gather sweep (Alg. 4.1): a radiosity hemicube per element, integrated, B = E + rho sum.
-    void gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& timers);
+    // One gather sweep (Alg. 4.1): a radiosity hemicube per element, integrated, B = E + rho sum;
+    // `afterBatch(done)`, if given, after each batch's passes are issued (done: elements gathered in
+    // this sweep so far; the gather's progress report).
+    void gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& timers, const std::function<void(uint32_t)>& afterBatch = {});
+    uint32_t gatherElementCount() const;  // the elements a sweep gathers at (one hemicube each)
 
     std::vector<QuadStats> quadStats();
     // Uploads shooters [first, first + n) of the shooter buffer and computes T for them.

@@ -96,7 +96,9 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
 
 void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     m_frameShooters = m_frameIterations = m_frameMovingPatches = m_frameRedistributionHemicubes = 0;
+    m_budgetHit = false;
     m_system->resetCounters();
+    m_frameStart = std::chrono::steady_clock::now();
     {
         auto s = ctx.timers.scope("radiosity.solve");
         solve(ctx);
@@ -113,6 +115,7 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     ctx.counters["shooters"] = m_frameShooters;
     ctx.counters["iterations"] = m_frameIterations;
     ctx.counters["converged"] = m_converged ? 1.0 : 0.0;
+    ctx.counters["budgetHit"] = m_budgetHit ? 1.0 : 0.0;
     ctx.counters["movingElements"] = static_cast<double>(m_system->movingElementCount());
     ctx.counters["movingPatches"] = m_frameMovingPatches;
     ctx.counters["redistributionHemicubes"] = m_frameRedistributionHemicubes;
@@ -138,20 +141,61 @@ std::vector<ShooterRect> RadiosityTechnique::subdivide(uint32_t quad, float flux
     return rects;
 }
 
-void RadiosityTechnique::shootBatches(FrameContext& ctx, uint32_t count, int mode, int receivers, bool removeMoving) {
+bool RadiosityTechnique::budgetAllows(bool guaranteed) const {
+    if (guaranteed || m_frameBudgetMs <= 0.0f) return true;
+    const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m_frameStart).count();
+    return elapsed + m_batchMs <= static_cast<double>(m_frameBudgetMs);
+}
+
+bool RadiosityTechnique::shootPending(FrameContext& ctx, bool budgeted, bool& shotAny, bool old) {
+    const bool removeMoving = m_pending.removeMoving;
     const render::DrawFilter filter = removeMoving ? render::DrawFilter::Static : render::DrawFilter::All;
-    for (uint32_t first = 0; first < count; first += static_cast<uint32_t>(m_batch)) {
-        const uint32_t n = std::min<uint32_t>(static_cast<uint32_t>(m_batch), count - first);
-        m_system->placeShooterHemicubes(1, first, n, ShooterAt::Front, false);
-        m_system->renderHemicubes(ctx.drawer, HemicubeKind::Id, 1, n, false, filter, ctx.timers);
-        m_system->reconstruct(mode, receivers, first, n, false, ctx.timers);
+    const int receivers = removeMoving ? RAD_RECEIVERS_STATIC : RAD_RECEIVERS_ALL;
+    while (m_pending.next < m_pending.count) {
+        if (budgeted && !budgetAllows(!shotAny)) {
+            m_budgetHit = true;
+            return false;
+        }
+        const uint32_t first = m_pending.next;
+        const uint32_t n = std::min<uint32_t>(static_cast<uint32_t>(m_batch), m_pending.count - first);
+        const auto start = std::chrono::steady_clock::now();
+        m_system->placeShooterHemicubes(1, first, n, ShooterAt::Front, old);
+        m_system->renderHemicubes(ctx.drawer, HemicubeKind::Id, 1, n, old, filter, ctx.timers);
+        m_system->reconstruct(RAD_SHOOT_UNSHOT, receivers, first, n, false, ctx.timers);
+        if (m_frameBudgetMs > 0.0f) {
+            // The batch's GPU work done, so its wall time is its cost (the budget's only CPU-GPU wait
+            // besides FINDSHOOTINGQUAD's readback; none without a budget).
+            glFinish();
+            m_batchMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        }
+        m_pending.next += n;
+        m_frameShooters += n;
+        shotAny = true;
     }
-    m_frameShooters += count;
+    m_pending = {};
+    return true;
+}
+
+void RadiosityTechnique::beginFrameFinishingPending(FrameContext& ctx) {
+    m_system->beginFrame(ctx.scene, ctx.time);
+    if (!m_system->anyMoving() || m_pending.next >= m_pending.count) return;
+    m_system->beginFrame(ctx.scene, m_commitTime);  // the last commit's bodies, current and old alike
+    bool shotAny = true;
+    shootPending(ctx, false, shotAny, true);  // hemicubes drawn with the last commit's transforms
+    m_system->beginFrame(ctx.scene, ctx.time);
+}
+
+void RadiosityTechnique::commitFrame(const FrameContext& ctx) {
+    m_system->commit();
+    m_commitTime = ctx.time;
 }
 
 void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterations, int minIterations, bool removeMoving) {
     m_converged = false;
     const auto& quads = m_system->patches().quads();
+    bool shotAny = false;
+    // The last frame's iteration first: its quad's unshot was cleared when its shooters were made.
+    if (!shootPending(ctx, true, shotAny)) return;
     for (int it = 0; it < maxIterations; ++it) {
         std::vector<QuadStats> stats;
         {
@@ -174,13 +218,20 @@ void RadiosityTechnique::progressiveRefinement(FrameContext& ctx, int maxIterati
             m_converged = true;
             break;
         }
+        // The frame's shooting budget: a new quad only if its first batch fits (the last batch's
+        // measured cost as its estimate).
+        if (it >= minIterations && !budgetAllows(!shotAny)) {
+            m_budgetHit = true;
+            break;
+        }
         const auto rects = subdivide(static_cast<uint32_t>(best), glm::pi<float>() * std::abs(luminance(stats[best].unshot)));
         m_system->loadShooters(rects);
         const auto n = static_cast<uint32_t>(rects.size());
         m_system->computeShooters(0, n, false);
         m_system->clearShooterUnshot(0, n);
-        shootBatches(ctx, n, RAD_SHOOT_UNSHOT, removeMoving ? RAD_RECEIVERS_STATIC : RAD_RECEIVERS_ALL, removeMoving);
+        m_pending = {n, 0, removeMoving};
         ++m_frameIterations;
+        if (!shootPending(ctx, true, shotAny)) return;
     }
 }
 

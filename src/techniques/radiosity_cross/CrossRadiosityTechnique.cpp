@@ -16,6 +16,8 @@
 //   PROJECTEDRADIOSITY: gridSize^2 rays through s, REPROJECTed with the back distance hemicube.
 // Initial solution (sec. 4.5.2): progressive refinement with the animated bodies REMOVED (not drawn
 // into hemicubes, not shooting or receiving), then one insertion redistribution (new terms only).
+// Under the per-frame shooting budget (frameBudgetMs) the M-free refinement spans as many frames as it
+// needs; the insertion follows in the frame it converges (or stops on maxIterations).
 // Regular progressive propagation (sec. 3.1: "ordinary progressive iterations are still needed
 // afterwards to propagate the changes"; sec. 3.3.4: the radiosity gathered during a redistribution "is
 // shot during the regular progressive propagation"): after the insertion and after every
@@ -75,20 +77,34 @@ void CrossRadiosityTechnique::solve(FrameContext& ctx) {
         m_system->computeLights(ctx.lights);
         m_system->reset(RAD_RECEIVERS_STATIC, true);
         m_system->reset(RAD_RECEIVERS_MOVING, false);
+        m_initialised = true;
+    } else if (!m_inserted) {
+        // The initial M-free solution goes on over frames under the shooting budget (M still removed:
+        // the override holds; the animated bodies' current transforms are the ones the insertion uses).
+        m_system->beginFrame(ctx.scene, ctx.time);
+        m_system->computeLights(ctx.lights);
+        m_system->applyLights(RAD_RECEIVERS_STATIC);
+    }
+    if (!m_inserted) {
+        // Sec. 4.5.2: PR with M removed to convergence (or maxIterations, as before the budget), then
+        // one insertion. Where the frame's time budget ends it first, the insertion waits for a later
+        // frame (M shows its direct light only until then), so what is inserted into does not depend on
+        // the host's speed.
         progressiveRefinement(ctx, m_maxIterations, 0, true);
+        if (m_budgetHit) return;
         if (m_system->anyMoving()) redistribute(ctx, true);
         m_system->setMovingOverride(nullptr);
         if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
-        m_system->commit();
-        m_initialised = true;
+        commitFrame(ctx);
+        m_inserted = true;
         return;
     }
-    m_system->beginFrame(ctx.scene, ctx.time);
+    beginFrameFinishingPending(ctx);  // a quad the last frame's budget cut shoots the rest of its light first
     m_system->computeLights(ctx.lights);
     if (m_system->anyMoving()) redistribute(ctx, false);  // M reset to E + D_new
     m_system->applyLights(RAD_RECEIVERS_ALL);             // the static elements' change of D, as unshot
     if (m_propagate) progressiveRefinement(ctx, m_maxIterations, 0, false);
-    m_system->commit();
+    commitFrame(ctx);
 }
 
 void CrossRadiosityTechnique::redistribute(FrameContext& ctx, bool insert) {

@@ -32,6 +32,7 @@ private:
     std::string m_weights{"area"};  // PROJECTEDRADIOSITY's ray weights: area (Eq. 3.3.2, the thesis) or formFactor
     bool m_propagate = true;        // the regular progressive propagation after each redistribution (sec. 3.1, 3.3.4)
     bool m_initialised = false;
+    bool m_inserted = false;  // the M-free initial solution converged and M was inserted (sec. 4.5.2)
     std::vector<char> m_animated;
 };
 

@@ -1,7 +1,8 @@
 // Incremental radiosity with reshooting, van de Hoef 2013 sec. 4.4, Alg. 4.3 (on the incremental
 // radiosity of Chen 1990 / George et al. 1990, Eq. 3.2.1):
-//   the first frame is a progressive-refinement solution (Alg. 4.2, to convergence); after that the
-//   solution is modified, never restarted. In a frame where bodies moved (M: the quads of bodies whose
+//   the first frame is a progressive-refinement solution (Alg. 4.2, to convergence, or as far as the
+//   frame's shooting budget frameBudgetMs goes: still frames continue it, so the initial solution
+//   converges over frames); after that the solution is modified, never restarted. In a frame where bodies moved (M: the quads of bodies whose
 //   transform changed since the last redistribution; C: the rest):
 //   1. R_p(M,C) part 1: every quad of M shoots its negative shot radiosity to C with the OLD form
 //      factors (ID hemicubes at the old positions, in the scene as it was);
@@ -13,6 +14,9 @@
 //      total; both: unshot; neither: nothing);
 //   4. a progressive-refinement iteration always follows (R_p(M,M) and R_p(M,C) part 2 ride on it;
 //      sec. 5.2.2: "always runs a PR iteration on redistribution"), then PR continues to the threshold.
+//   The redistribution is linear in what each quad has shot so far (M removes its shot, C shoots its
+//   total), so it is exact on an unconverged solution too; it always completes, the budget bounds only
+//   the progressive refinement after it.
 //   Cost: 2 |M| + 2 |C| shooter hemicubes per redistribution (sec. 3.2); a frame where nothing moved
 //   shoots only while unshot radiosity is above the threshold, so a converged still scene renders
 //   no hemicube at all.
@@ -27,7 +31,7 @@ namespace bounce {
 using namespace radiosity;
 
 void IncrementalRadiosityTechnique::solve(FrameContext& ctx) {
-    m_system->beginFrame(ctx.scene, ctx.time);
+    beginFrameFinishingPending(ctx);  // a quad the last frame's budget cut shoots the rest of its light first
     m_system->computeLights(ctx.lights);
     if (!m_initialised) {
         m_system->reset(RAD_RECEIVERS_ALL, true);
@@ -41,7 +45,7 @@ void IncrementalRadiosityTechnique::solve(FrameContext& ctx) {
         m_system->applyLights(RAD_RECEIVERS_ALL);
         progressiveRefinement(ctx, m_maxIterations, 0, false);
     }
-    m_system->commit();
+    commitFrame(ctx);
 }
 
 void IncrementalRadiosityTechnique::redistribute(FrameContext& ctx) {

@@ -7,9 +7,10 @@
 //   (Delta B_e = rho_e B_s^u A_s F_se with the disk approximation and the 4-nearest-pixel quad-ID
 //   visibility test).
 // Like the thesis's benchmarks the solution restarts from B = Bu = E whenever something moved (sec.
-// 5.2), which makes it follow any motion; maxIterations bounds a frame's shooting quads. A frame in
-// which nothing moved continues the last frame's shooting instead of repeating it (bounce's choice:
-// the same solution, reached over frames where one frame's budget does not converge).
+// 5.2), which makes it follow any motion; maxIterations and frameBudgetMs bound a frame's shooting
+// quads. A frame in which nothing moved continues the last frame's shooting instead of repeating it
+// (bounce's choice: the same solution, the same sequence of shooting quads, reached over frames where
+// one frame's budget does not converge).
 #include "techniques/radiosity_pr/ProgressiveRadiosityTechnique.h"
 
 namespace bounce {
@@ -22,6 +23,11 @@ void ShootingRadiosityTechnique::visitMethodSettings(SettingsVisitor& v) {
     v.field("ffSubdivisions", m_options.ffSubdivisions, "sub-disks per side when split", 1, 8);
     v.field("threshold", m_threshold, "convergence: stop when the brightest quad's mean unshot radiance is below this fraction of the brightest emitter's (thesis: value not given)", 0.0f, 1.0f);
     v.field("maxIterations", m_maxIterations, "shooting quads per frame at most (Alg. 4.2 iterations)", 1, 1000000);
+    v.field("frameBudgetMs", m_frameBudgetMs,
+            "per-frame shooting budget, ms of CPU wall time from the start of the frame's solve: no batch of shooters starts that "
+            "would end past it (the first of a frame always runs; a cut quad's rest is shot next frame), so the solution converges "
+            "over frames (bounce's; thesis: shooter batches). 0: off",
+            0.0f, 1e7f, PerProfile<float>{kDefaultFrameBudgetMs, kGpuFrameBudgetMs});
     v.field("shooterFlux", m_shooterFlux, "dynamic shooter subdivision: a patch carries at most about this fraction of the emitted flux (thesis: mapping not given)", 1e-6f, 1.0f);
     v.field("batch", m_batch, "shooters per reconstruction pass (thesis benchmarks: 10)", 1, RAD_MAX_BATCH);
 }
@@ -30,7 +36,10 @@ void ProgressiveRadiosityTechnique::solve(FrameContext& ctx) {
     m_system->beginFrame(ctx.scene, ctx.time);
     m_system->computeLights(ctx.lights);
     // Bodies include the lights: a moving light, object or emitter restarts the solution.
-    if (!m_started || m_system->anyMoving()) m_system->reset(RAD_RECEIVERS_ALL, true);
+    if (!m_started || m_system->anyMoving()) {
+        m_system->reset(RAD_RECEIVERS_ALL, true);
+        dropPending();  // the batches the last frame's budget left belong to the solution just dropped
+    }
     m_started = true;
     progressiveRefinement(ctx, m_maxIterations, 0, false);
     m_system->commit();
