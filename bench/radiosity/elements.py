@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Radiosity's element counts against elementSize and scene area (issue 30: charts decoupled from the
-mesh's faces, docs/techniques/radiosity.md "Charts" and "Element size").
+mesh's faces; docs/techniques/radiosity.md "Charts, not the mesh's faces" and "Charts and element size:
+measurements").
 
-Usage: bench/radiosity/elements.py [BOUNCE] [--scenes a,b] [--sizes auto,0.2,...] [--name NAME]
+Usage: bench/radiosity/elements.py [BOUNCE] [--scenes a,b] [--sizes auto,0.2,...] [--name NAME] [--note TEXT]
+       (--note: stored in the record, e.g. which commit an older BOUNCE was built from)
 
 Per (scene, elementSize): one `bounce render` of radiosity-pr at 16x16 with one shooting iteration
 (maxIterations=1, 16^2 hemicubes: the counts, not the solution) and its run record's counters: elements,
@@ -30,8 +32,11 @@ def main():
     scenes = option(args, "--scenes", SCENES, str).split(",")
     sizes = option(args, "--sizes", SIZES, str).split(",")
     name = option(args, "--name", "radiosity-elements", str)
+    note = option(args, "--note", "", str)
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
     record = new_record(name, " ".join(["bench/radiosity/elements.py"] + sys.argv[1:]), bounce)
+    if note:
+        record["note"] = note
     record["results"] = []
     with tempfile.TemporaryDirectory() as tmp:
         for scene in scenes:
@@ -50,8 +55,9 @@ def main():
                     with open(stats) as f:
                         r = json.load(f)
                     c = r["frames"][-1]["counters"]
-                    entry.update({"triangles": r["scene"]["triangles"], "elementSize": c["elementSize"],
-                                  "elements": int(c["elements"]), "activeElements": int(c["activeElements"]),
+                    # A binary from before the charts reports neither the derived size nor the ghosts.
+                    entry.update({"triangles": r["scene"]["triangles"], "elementSize": c.get("elementSize", float(value)),
+                                  "elements": int(c["elements"]), "activeElements": int(c.get("activeElements", c["elements"])),
                                   "charts": int(c["quads"]), "setup_s": round(r["setup_seconds"], 2)})
                 record["results"].append(entry)
                 print(f"{scene:16s} {size:5s} " + (entry.get("refused") or

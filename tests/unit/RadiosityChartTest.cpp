@@ -1,8 +1,8 @@
-// Radiosity's charts (PatchModel.h, radiosity.md "Charts"): elements decoupled from the mesh's
-// triangulation. A plane of many small triangles gets about area / elementSize^2 elements (the per-face
-// quads before issue 30 gave it at least 2 x 2 per triangle pair), element areas sum to the surface
-// area, every triangle vertex's (s, t) maps back onto it, curved surfaces stay cheap, and the automatic
-// element size follows the scene's area.
+// Radiosity's charts (PatchModel.h, radiosity.md "Charts, not the mesh's faces"): elements decoupled
+// from the mesh's triangulation. A plane of many small triangles gets about area / elementSize^2
+// elements (the per-face quads before issue 30 gave it at least 2 x 2 per triangle pair), element
+// areas sum to the surface area, every triangle vertex's (s, t) maps back onto it, curved surfaces
+// stay cheap, and the automatic element size follows the scene's area.
 #include "scene/MeshBuilder.h"
 #include "scene/SceneLoader.h"
 #include "techniques/radiosity/PatchModel.h"

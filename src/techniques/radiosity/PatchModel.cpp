@@ -20,11 +20,11 @@ namespace bounce::radiosity {
 namespace {
 
 // A chart takes the connected triangles whose normals lie within this angle of its first triangle's
-// (bounce's choice, radiosity.md "Charts"): 0 would give the old per-face quads on curved surfaces
-// (at least 2x2 texels per face: 145,496 elements for Sponza at any elementSize); 20 degrees keeps the
-// cosine error of a receiver's normal against the chart's (area-weighted mean) normal at most
-// 1 - cos 20 = 6 % while a 16-segment column (22.5 degrees per face) still needs one chart per face
-// and a 64-segment one four faces per chart. Planar surfaces (normals within 1e-4 rad) are unaffected.
+// (bounce's choice, radiosity.md "Charts, not the mesh's faces"). 0 would leave curved surfaces at
+// about the old per-face quads (at least 2x2 texels per face: 145,496 elements for Sponza at any
+// elementSize); 20 degrees keeps the cosine error of a receiver's normal against its chart's
+// (area-weighted mean) normal at most 1 - cos 20 = 6 %, while a 64-segment column takes four faces
+// per chart and a 16-segment one (22.5 degrees per face) a face each. Planar surfaces merge whole.
 constexpr float kChartConeDegrees = 20.0f;
 // Triangles below this area (m^2) are degenerate: no quad, drawn as "no patch".
 constexpr float kDegenerateArea = 1e-12f;

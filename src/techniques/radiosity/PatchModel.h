@@ -3,8 +3,8 @@
 // planar rectangles ("quads", the thesis's patches), each owning an nu x nv region of one radiosity
 // texture atlas whose outer ring of texel centres lies on the rectangle's edges (thesis Fig. 4.1.2).
 //
-// Quads are charts, decoupled from the mesh's triangulation (issue 30; radiosity.md "Charts"): the
-// connected triangles of one object whose normals lie within kChartConeDegrees of the chart's first
+// Quads are charts, decoupled from the mesh's triangulation (issue 30; radiosity.md "Charts, not the
+// mesh's faces"): the connected triangles of one object whose normals lie within kChartConeDegrees of the chart's first
 // triangle are one chart, parametrized on the tightest oriented bounding rectangle of their
 // projection onto the chart's plane (area-weighted mean normal). Every triangle vertex gets its (s,t)
 // in that rectangle, so thousands of small triangles share one texel region and the element count
@@ -33,9 +33,9 @@
 namespace bounce::radiosity {
 
 // Elements per scene when elementSize is automatic (0): the pitch is sqrt(surface area / this). Chosen
-// so the Cornell boxes keep about the 0.05 m elements they had (cornell-box-area: 2.1 m^2 of surface,
-// 1,100 elements at 0.05 m on the old per-face quads) while the 20 m courtyard and atrium
-// (4,000-6,000 m^2) get 0.3-0.4 m elements and run (radiosity.md "Element size").
+// so the Cornell boxes keep about the 0.05 m elements they had (cornell-box-area: 2.0 m^2 of surface,
+// 1,217 elements at 0.05 m on the former per-face quads, 1,424 at the derived 0.044 m) while the
+// 1,900 m^2 courtyard and atrium get 1.36-1.39 m (radiosity.md "Charts and element size: measurements").
 constexpr double kAutoTargetElements = 1000.0;
 
 // The element pitch elementSize = 0 ("auto") stands for: sqrt(A / kAutoTargetElements), A the summed
