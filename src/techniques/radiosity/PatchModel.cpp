@@ -171,6 +171,8 @@ void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const 
     struct Acc {
         double area = 0.0;
         glm::dvec3 position{0.0}, albedo{0.0};
+        double largest = 0.0;                    // the largest piece's area, m^2
+        glm::dvec3 onLargest{0.0}, normal{0.0};  // a point of its triangle and the triangle's unit normal
     };
     std::vector<Acc> acc(cells);
     double total = 0.0;
@@ -185,7 +187,9 @@ void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const 
             m_triangles[tri.ref].quad = quad;
             for (int k = 0; k < 3; ++k) m_triangles[tri.ref].st[k] = st[k];
         }
-        const double area3 = 0.5 * glm::length(glm::cross(glm::dvec3(tri.p[1] - tri.p[0]), glm::dvec3(tri.p[2] - tri.p[0])));
+        const glm::dvec3 cross3 = glm::cross(glm::dvec3(tri.p[1] - tri.p[0]), glm::dvec3(tri.p[2] - tri.p[0]));
+        const double area3 = 0.5 * glm::length(cross3);
+        const glm::dvec3 normal3 = cross3 / std::max(2.0 * area3, 1e-300);
         total += area3;
         const glm::dvec2 e1 = g[1] - g[0], e2 = g[2] - g[0];
         const double cross2 = e1.x * e2.y - e1.y * e2.x, area2 = 0.5 * std::abs(cross2);
@@ -229,6 +233,11 @@ void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const 
                 a.area += w;
                 a.position += w * p;
                 a.albedo += w * glm::dvec3(albedo(glm::vec2(uvc)));
+                if (w > a.largest) {
+                    a.largest = w;
+                    a.onLargest = p;
+                    a.normal = normal3;
+                }
             }
     }
     q.area = static_cast<float>(total);
@@ -268,7 +277,12 @@ void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const 
             el.emission = q.emission;
             const Acc& from = acc[static_cast<size_t>(std::max(source[k], 0))];
             if (from.area > 0.0) {
-                el.position = glm::vec3(from.position / from.area);
+                // The centroid of the covered part, onto the plane of its largest piece: on a planar chart
+                // the centroid itself; on a curved one the centroid of pieces on several faces lies inside
+                // the surface by up to the cone's sag (1.5 cm on a 0.25 m column), more than the hemicube
+                // offset, so a gather hemicube there would see the surface's back.
+                const glm::dvec3 c = from.position / from.area;
+                el.position = glm::vec3(c - glm::dot(c - from.onLargest, from.normal) * from.normal);
                 el.albedo = glm::vec3(from.albedo / from.area);
             } else {
                 el.position = pointAt(q, texelParam(q, i, j));
