@@ -10,9 +10,9 @@ scenes=$("$bounce" list --scenes --names)
 techniques=$("$bounce" list --techniques --names)
 skipped=0
 # The rendering part aims at about 3 minutes on 2 llvmpipe cores (issue 30). The radiosity methods'
-# cost is their element count, not the image, and their elements follow the meshes' faces: here they
-# run with coarser elements (0.2 m instead of 0.05 m) and 32^2 hemicubes, the shooting methods not on
-# the scenes of many faces (atrium, courtyard: hours; furnished-room: minutes), and the gather, the
+# cost is their element count and hemicubes, not the image: here they run with coarse elements (0.2 m;
+# the automatic size gives the Cornell boxes 0.044 m) and 32^2 hemicubes, the shooting methods not on
+# the scenes of many faces (atrium, courtyard: minutes a frame; furnished-room: minutes), and the gather, the
 # expensive reference (one hemicube per element and bounce; two-rooms 33 s, furnished-room 180 s
 # here), on the two Cornell boxes of the thesis's kind only. `bounce render` runs any pair on request.
 radiosity_demo=(--set elementSize=0.2 --set dynamicElementSize=0.2 --set hemicubeSize=32)

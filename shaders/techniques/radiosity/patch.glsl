@@ -5,7 +5,8 @@
 layout(std430, binding = BINDING_SSBO_RAD_QUADS) readonly buffer RadQuadBlock { RadQuadGpu u_quads[]; };
 layout(std430, binding = BINDING_SSBO_RAD_TRIANGLES) readonly buffer RadTriangleBlock {
     uvec4 u_triangleHeader;  // x: object count
-    uvec4 u_triangleData[];  // [0, objects): x = first triangle of object k; then per triangle: x quad, y corner codes
+    uvec4 u_triangleData[];  // [0, objects): x = first triangle of object k; then per triangle: x quad,
+                             // y, z, w: packUnorm2x16 (s, t) of its three vertices in the quad
 };
 layout(std430, binding = BINDING_SSBO_RAD_BODIES) readonly buffer RadBodyBlock { RadBodyGpu u_bodies[]; };
 layout(std430, binding = BINDING_SSBO_RAD_BODIES_OLD) readonly buffer RadBodyOldBlock { RadBodyGpu u_bodiesOld[]; };
@@ -15,34 +16,29 @@ const uint RAD_LIGHT_OBJECT_BIT = 0x80000000u;
 const uint RAD_SKIP_OBJECT = 0xFFFFFFFFu;
 const uint RAD_NO_MATERIAL = 0xFFFFFFFFu;  // g_material of light quads: never masked  // a light quad the draw's filter excludes
 
-// The surface point of quad q at (s, t), object space (PatchModel::pointAt).
-vec3 radPointAt(RadQuadGpu q, vec2 st) {
-    if (floatBitsToUint(q.p0.w) == uint(RAD_MAP_TRIANGLE) || st.x + st.y <= 1.0)
-        return q.p0.xyz + st.x * (q.p1.xyz - q.p0.xyz) + st.y * (q.p3.xyz - q.p0.xyz);
-    return q.p2.xyz + (1.0 - st.x) * (q.p3.xyz - q.p2.xyz) + (1.0 - st.y) * (q.p1.xyz - q.p2.xyz);
-}
+// The point of quad q's rectangle at (s, t), object space (PatchModel::pointAt).
+vec3 radPointAt(RadQuadGpu q, vec2 st) { return q.p0.xyz + st.x * (q.p1.xyz - q.p0.xyz) + st.y * (q.p3.xyz - q.p0.xyz); }
 
 // Texture coordinate of (s, t) in the atlas: the region's outer texel centres lie on the edges.
 vec2 radAtlasUv(RadQuadGpu q, vec2 st, vec2 atlasSize) {
     return (vec2(q.atlas.xy) + 0.5 + st * vec2(q.atlas.zw - 1u)) / atlasSize;
 }
 
-// Quad and (s, t) corners of scene triangle `prim` of object `object` (or of a light quad).
+// Quad and (s, t) of the vertices of scene triangle `prim` of object `object` (or of a light quad,
+// drawn as the triangles p0 p1 p3 and p1 p2 p3: light.vert).
 uint radTriangleQuad(uint object, uint prim, out vec2 st[3]) {
-    uint quad, corners;
     if ((object & RAD_LIGHT_OBJECT_BIT) != 0u) {
-        quad = object & ~RAD_LIGHT_OBJECT_BIT;
-        corners = (prim & 1u) == 0u ? (0u | 1u << 2 | 2u << 4) : (1u | 3u << 2 | 2u << 4);
-    } else {
-        uvec4 t = u_triangleData[u_triangleHeader.x + u_triangleData[object].x + prim];
-        quad = t.x;
-        corners = t.y;
+        bool second = (prim & 1u) != 0u;
+        st[0] = second ? vec2(1.0, 0.0) : vec2(0.0, 0.0);
+        st[1] = second ? vec2(1.0, 1.0) : vec2(1.0, 0.0);
+        st[2] = vec2(0.0, 1.0);
+        return object & ~RAD_LIGHT_OBJECT_BIT;
     }
-    for (int k = 0; k < 3; ++k) {
-        uint c = (corners >> (2 * k)) & 3u;
-        st[k] = vec2(float(c & 1u), float(c >> 1));
-    }
-    return quad;
+    uvec4 t = u_triangleData[u_triangleHeader.x + u_triangleData[object].x + prim];
+    st[0] = unpackUnorm2x16(t.y);
+    st[1] = unpackUnorm2x16(t.z);
+    st[2] = unpackUnorm2x16(t.w);
+    return t.x;
 }
 
 mat4 radWorldFromObject(uint body, bool old) {

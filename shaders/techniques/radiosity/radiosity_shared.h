@@ -14,11 +14,6 @@
 namespace bounce::gpu {
 #endif
 
-// How a quad's (s, t) parameter square maps onto its surface (RadQuadGpu::p0.w).
-#define RAD_MAP_QUAD 0      // two triangles p0 p1 p3 and p1 p2 p3 sharing the diagonal p1-p3
-#define RAD_MAP_TRIANGLE 1  // a lone triangle p0 p1 p3 at (0,0) (1,0) (0,1); texels whose centre has
-                            // s + t > 1 sample the nearest point of the hypotenuse
-
 #define RAD_QUAD_EMITTER 1u  // flags
 #define RAD_QUAD_LIGHT 2u    // an area light's rectangle (not scene geometry; drawn by the radiosity passes)
 #define RAD_NO_QUAD 0xFFFFFFFFu
@@ -41,11 +36,12 @@ namespace bounce::gpu {
 
 #define RAD_MAX_BATCH 16         // shooters per reconstruction pass (thesis benchmarks: 10)
 
-// One planar quad (or lone triangle) of the scene or an area light, owning an nu x nv texel region
-// of the radiosity atlas whose outer texel ring lies on the quad's edges (thesis Fig. 4.1.2).
+// One chart of the scene (a rectangle on which connected, near-coplanar triangles of one object are
+// parametrized: PatchModel.h) or an area light, owning an nu x nv texel region of the radiosity atlas
+// whose outer texel ring lies on the rectangle's edges (thesis Fig. 4.1.2).
 struct RadQuadGpu {
-    vec4 p0, p1, p2, p3;  // object-space corners at (s,t) = (0,0) (1,0) (1,1) (0,1); p0.w: RAD_MAP_*
-    vec4 normal;          // object-space unit normal (front side); w: area, m^2
+    vec4 p0, p1, p2, p3;  // object-space rectangle corners at (s,t) = (0,0) (1,0) (1,1) (0,1); w: unused
+    vec4 normal;          // object-space unit normal (front side); w: area the chart covers, m^2
     vec4 emission;        // rgb: emitted radiance E, W/(m^2 sr); w: unused
     uvec4 atlas;          // x, y: texel offset of the region; z: nu; w: nv (>= 2 each)
     uvec4 info;           // x: body; y: first element; z: RAD_QUAD_* flags; w: surface (what ID hemicubes hold)
@@ -53,7 +49,7 @@ struct RadQuadGpu {
 
 // One element = one atlas texel (a receiver).
 struct RadElementGpu {
-    vec4 position;  // object-space sample position (corners inset); w: area, m^2 (0 for ghosts)
+    vec4 position;  // object-space sample position (the covered part's centroid); w: area, m^2 (0 for ghosts)
     vec4 albedo;    // rgb: rho
     vec4 emission;  // rgb: E, W/(m^2 sr)
     uvec4 info;     // x: quad; y: atlas texel x | y << 16; z: body; w: i | j << 16 within the quad

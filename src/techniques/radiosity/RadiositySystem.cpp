@@ -7,6 +7,7 @@
 #include "techniques/radiosity/HemicubeMath.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -98,8 +99,7 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
     std::vector<gpu::RadQuadGpu> quads;
     for (const Quad& q : pm.quads()) {
         gpu::RadQuadGpu g{};
-        const float map = glm::uintBitsToFloat(static_cast<uint32_t>(q.map));
-        g.p0 = glm::vec4(q.p[0], map);
+        g.p0 = glm::vec4(q.p[0], 0.0f);
         g.p1 = glm::vec4(q.p[1], 0.0f);
         g.p2 = glm::vec4(q.p[2], 0.0f);
         g.p3 = glm::vec4(q.p[3], 0.0f);
@@ -128,7 +128,8 @@ Expected<std::unique_ptr<RadiositySystem>> RadiositySystem::create(const Scene& 
     std::vector<glm::uvec4> triangles;
     triangles.push_back(glm::uvec4(pm.objectCount(), 0u, 0u, 0u));
     for (uint32_t base : pm.objectTriangleBase()) triangles.push_back(glm::uvec4(base, 0u, 0u, 0u));
-    for (const TriangleRef& t : pm.triangles()) triangles.push_back(glm::uvec4(t.quad, t.corners, 0u, 0u));
+    for (const TriangleRef& t : pm.triangles())
+        triangles.push_back(glm::uvec4(t.quad, glm::packUnorm2x16(t.st[0]), glm::packUnorm2x16(t.st[1]), glm::packUnorm2x16(t.st[2])));
 
     s.m_quads = gl::Buffer::create("radiosity.quads", quads.size() * sizeof(gpu::RadQuadGpu), quads.data());
     s.m_elements = gl::Buffer::create("radiosity.elements", elements.size() * sizeof(gpu::RadElementGpu), elements.data());

@@ -3,10 +3,11 @@
 // methods; each method's algorithm is in its own folder (radiosity_gather, radiosity_pr,
 // radiosity_incremental, radiosity_cross).
 //
-// Model (sec. 4.1; PatchModel.h): planar quads from the scene's triangle pairs, each with an
-// nu x nv region of one RGBA32F atlas for B and one for the unshot Bu; the outer texel ring lies on
-// the quad's edges; edge/corner elements own half/quarter cells; border samples are inset. Area
-// lights are emitter quads. Everything is stored as radiance (B / pi, radiosity_shared.h).
+// Model (sec. 4.1; PatchModel.h): planar quads (charts of connected near-coplanar triangles, on their
+// bounding rectangle), each with an nu x nv region of one RGBA32F atlas for B and one for the unshot
+// Bu; the outer texel ring lies on the rectangle's edges; an element owns its cell clipped to the
+// rectangle and the chart's triangles, its sample at the covered part's centroid. Area lights are
+// emitter quads. Everything is stored as radiance (B / pi, radiosity_shared.h).
 //
 // Passes and their OpenGL 4.5 form (the thesis used Direct3D 11):
 //   hemicube rendering   five projections -> one layered draw per hemicube: a geometry shader with
@@ -33,8 +34,9 @@
 //
 // Deviations and choices (docs/techniques/radiosity.md lists them with their reasons):
 //   - the gather method keeps its elements in RGBA32F like the others (thesis: RGBA16F);
-//   - every border sample inset, not only the corners (PatchModel.h says why);
-//   - element pitch, border inset, shooter subdivision rule, convergence threshold, form-factor
+//   - quads are charts decoupled from the mesh's faces, every border sample at its clipped cell's
+//     centroid (inset), not only the corners (PatchModel.h says why);
+//   - element pitch (auto: from the scene's area), shooter subdivision rule, convergence threshold, form-factor
 //     subdivision ratio are not given by the thesis: chosen and named as settings;
 //   - emitters are area lights or emissive materials (the thesis's emitting patches); point, spot
 //     and directional lights (bounce's extension) shoot their direct light, evaluated at the elements
@@ -45,6 +47,8 @@
 #include "techniques/radiosity/RadiosityTechnique.h"
 
 #include "core/Image.h"
+
+#include <spdlog/spdlog.h>
 
 #include <glm/gtc/constants.hpp>
 
@@ -69,9 +73,8 @@ void RadiosityTechnique::debugViews(std::vector<DebugView>& out) const {
 }
 
 void RadiosityTechnique::visitSettings(SettingsVisitor& v) {
-    v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given)", 1e-4f, 100.0f);
-    v.field("dynamicElementSize", m_dynamicElementSize, "metres between element centres on animated objects", 1e-4f, 100.0f);
-    v.field("borderInset", m_options.patches.borderInset, "border elements' sample moved inward, texel pitches (thesis: corners only, 'a small offset'; docs say why all borders)", 0.0f, 0.5f);
+    v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given); 0 = auto: sqrt(scene surface area / 1000), printed and in the run record's counters", 0.0f, 100.0f);
+    v.field("dynamicElementSize", m_dynamicElementSize, "metres between element centres on animated objects; 0 = auto, as elementSize", 0.0f, 100.0f);
     v.field("hemicubeSize", m_options.hemicubeSize, "hemicube top-face pixels per side; side faces are half as high (thesis: 64)", 4, 512);
     v.field("randomRotation", m_options.randomRotation, "rotate each hemicube about its normal by a hash of its position (thesis sec. 4.2)");
     v.field("view", m_view, "display filter of the radiosity textures: bilinear (thesis) or nearest (Fig. 4.1.1 debug view)", kViews);
@@ -87,6 +90,11 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
     m_options.patches.dynamicElementSize = m_dynamicElementSize;
     adjustOptions(m_options);
     BOUNCE_TRY(m_system, RadiositySystem::create(ctx.scene, m_options));
+    const PatchModel& pm = m_system->patches();
+    spdlog::info("{}: elementSize {:.4g} m{}, dynamicElementSize {:.4g} m{}: {} elements ({} on the surfaces, the rest "
+                 "ghosts) in {} charts",
+                 name(), pm.elementSize(), m_elementSize > 0.0f ? "" : " (auto)", pm.dynamicElementSize(),
+                 m_dynamicElementSize > 0.0f ? "" : " (auto)", pm.elements().size(), pm.activeElementCount(), pm.quads().size());
     m_maxEmission = 0.0f;
     for (const Element& e : m_system->patches().elements()) m_maxEmission = std::max(m_maxEmission, luminance(e.emission));
     // Point, spot and directional lights: their brightest unshadowed element radiance is the emission scale.
@@ -110,7 +118,10 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     }
     const PatchModel& pm = m_system->patches();
     ctx.counters["elements"] = static_cast<double>(pm.elements().size());
+    ctx.counters["activeElements"] = static_cast<double>(pm.activeElementCount());
     ctx.counters["quads"] = static_cast<double>(pm.quads().size());
+    ctx.counters["elementSize"] = pm.elementSize();  // metres: the setting, or what auto derived
+    ctx.counters["dynamicElementSize"] = pm.dynamicElementSize();
     ctx.counters["hemicubes"] = m_frameHemicubes;
     ctx.counters["shooters"] = m_frameShooters;
     ctx.counters["iterations"] = m_frameIterations;

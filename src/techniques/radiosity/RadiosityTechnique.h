@@ -93,8 +93,8 @@ protected:
 
     std::unique_ptr<radiosity::RadiositySystem> m_system;
     radiosity::SystemOptions m_options;
-    float m_elementSize = 0.05f;
-    float m_dynamicElementSize = 0.05f;
+    float m_elementSize = 0.0f;         // metres; 0 = auto (PatchModel.h autoElementSize)
+    float m_dynamicElementSize = 0.0f;  // metres; 0 = auto
     float m_threshold = 1e-3f;
     int m_maxIterations = 400;
     float m_shooterFlux = 0.003f;
