@@ -93,6 +93,10 @@ void IirTechnique::visitSettings(SettingsVisitor& v) {
     v.field("shadowMapSize", m_shadowMapSize, "paraboloid shadow map size per side, texels (paper: 256)", 16, 2048);
     v.field("tilesX", m_tilesX, "interleaved-sampling tiles n across (paper: 4)", 1, 16);
     v.field("tilesY", m_tilesY, "interleaved-sampling tiles m down (paper: 4)", 1, 16);
+    v.field("filter", m_filterKernel,
+            "geometry-aware filter kernel: tent = (2n-1) x (2m-1) taps weighted (n-|x|)(m-|y|), each VPL subset "
+            "interpolated linearly (no stair-steps; docs); box = the paper's n x m box (Fig. 5)",
+            kFilters);
     v.field("normalThreshold", m_normalThreshold, "filter beta: minimum normal dot product (paper: 0.8)", -1.0f, 1.0f);
     v.field("positionThreshold", m_positionThreshold,
             "filter alpha: maximum position distance, fraction of the scene diagonal (paper: scene-dependent, none given)",
@@ -456,6 +460,7 @@ void IirTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         setTiling(m_filter);
         m_filter.set("u_alpha", m_positionThreshold * m_sceneDiagonal);
         m_filter.set("u_beta", m_normalThreshold);
+        m_filter.set("u_tent", m_filterKernel == "box" ? 0 : 1);
         m_filter.use();
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
