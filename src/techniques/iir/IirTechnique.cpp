@@ -348,6 +348,13 @@ void IirTechnique::collectCounters(Counters& out) {
     out["vplMapSamples"] = static_cast<double>(samples);
 }
 
+void IirTechnique::derivedSettings(std::map<std::string, double>& out) const {
+    out["sceneDiagonalMetres"] = m_sceneDiagonal;
+    out["positionThresholdMetres"] = static_cast<double>(m_positionThreshold) * m_sceneDiagonal;
+    out["clampDistanceMetres"] = static_cast<double>(m_clampDistance) * m_sceneDiagonal;
+    out["shadowBiasMetres"] = static_cast<double>(m_shadowBias) * m_sceneDiagonal;
+}
+
 void IirTechnique::uploadVpls() {
     const VplDistribution& dist = *m_distribution;
     const float offset = kSurfaceOffsetInDiagonals * m_sceneDiagonal;

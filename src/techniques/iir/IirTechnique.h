@@ -37,6 +37,9 @@ public:
     // vplMapSamples: depth samples that passed over this frame's paraboloid maps (a query read after the
     // frame is queued): the fragment work behind a map's cost (docs/techniques/iir.md, R1).
     void collectCounters(Counters& out) override;
+    // positionThresholdMetres (the filter's alpha), clampDistanceMetres (d_c), shadowBiasMetres: the
+    // settings, fractions of the scene diagonal, times the diagonal.
+    void derivedSettings(std::map<std::string, double>& out) const override;
 
     // For tests and benchmarks: the distribution, the flux each sample carries this frame (W per
     // channel, indexed by slot) and the primary light's flux.
