@@ -16,7 +16,8 @@
 //       creation order (§7) and keep their tile while they live (TileAssignment), so replacing a few
 //       VPLs does not shift the interleaving pattern of the others.
 //   8   "combine": the inverse of the split.
-//   9   "filter": the geometry-aware n×m box filter (Fig. 5), then the receiver's albedo/π.
+//   9   "filter": the geometry-aware filter (Fig. 5's thresholds; by default over a (2n-1)×(2m-1) tent
+//       instead of the n×m box, which left stair-steps of period n: docs), then the receiver's albedo/π.
 //
 // Equations. A VPL i at a diffuse hit of albedo ρ_i receiving flux Φ_i is a cosine emitter of
 // intensity I_i(θ) = ρ_i Φ_i cosθ / π. A receiver x with normal n_x gets
@@ -32,6 +33,7 @@
 // - area and directional primary lights become point emitters.
 // - VPL management overlaps only the GPU work already queued this frame (no one-frame delay).
 // - G-buffer atlases are 32-bit float.
+// - the filter's kernel is a tent over (2n-1)×(2m-1) taps by default (filter=box: the paper's n×m box).
 #include "techniques/iir/IirTechnique.h"
 
 #include "scene/AreaTexture.h"
