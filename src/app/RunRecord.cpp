@@ -69,11 +69,17 @@ nlohmann::json renderRunRecord(const Scene& scene, Pipeline& pipeline, const std
     render::RenderSettings renderSettings = pipeline.renderSettings();
     nlohmann::json frameList = nlohmann::json::array();
     for (const FrameStats& f : frames) frameList.push_back(frameStatsJson(f));
+    // The scale-derived defaults as used on this scene (Technique::derivedSettings), metres.
+    std::map<std::string, double> derivedValues;
+    pipeline.technique().derivedSettings(derivedValues);
+    nlohmann::json derived = nlohmann::json::object();
+    for (const auto& [name, value] : derivedValues) derived[name] = value;
     nlohmann::json record = {
         {"scene", {{"name", scene.name}, {"source", scene.source}, {"triangles", scene.triangleCount()},
                    {"lights", scene.lights.size()}}},
         {"technique", std::string(pipeline.technique().name())},
         {"settings", settingsToJson(pipeline.technique())},
+        {"derived", derived},
         {"renderer", settingsToJson(renderSettings)},
         {"size", {pipeline.size().x, pipeline.size().y}},
         {"gpu", gpuInfoJson(gpu)},

@@ -93,6 +93,12 @@ public:
     // work is queued whole: renderIndirect runs inside a gl::FramePath and makes no read that waits for
     // the GPU (gpu/Readbacks.h; tests/gpu/ReadbackGpuTest.cpp checks every registered technique).
     virtual void collectCounters(Counters& /*out*/) {}
+    // The effective value of each setting whose default the technique derives from the scene (a fraction
+    // of the scene's diagonal, a grid around its bounds), in metres, under a name ending in the unit
+    // ("positionThresholdMetres"); valid after setup. A setting the user set reports the value used too.
+    // The run record prints them under "derived" (app/RunRecord.cpp), so a user sees what a scale-relative
+    // default came to on their scene; each technique's doc page names its entries.
+    virtual void derivedSettings(std::map<std::string, double>& /*out*/) const {}
     // Non-empty for a technique whose paper reads GPU results back in the middle of its frame (the
     // reason, naming the paper's step); the readback test then reports those reads instead of failing.
     virtual std::string_view frameReadbackReason() const { return {}; }

@@ -16,7 +16,8 @@
 //       creation order (§7) and keep their tile while they live (TileAssignment), so replacing a few
 //       VPLs does not shift the interleaving pattern of the others.
 //   8   "combine": the inverse of the split.
-//   9   "filter": the geometry-aware n×m box filter (Fig. 5), then the receiver's albedo/π.
+//   9   "filter": the geometry-aware filter (Fig. 5's thresholds; by default over a (2n-1)×(2m-1) tent
+//       instead of the n×m box, which left stair-steps of period n: docs), then the receiver's albedo/π.
 //
 // Equations. A VPL i at a diffuse hit of albedo ρ_i receiving flux Φ_i is a cosine emitter of
 // intensity I_i(θ) = ρ_i Φ_i cosθ / π. A receiver x with normal n_x gets
@@ -32,6 +33,7 @@
 // - area and directional primary lights become point emitters.
 // - VPL management overlaps only the GPU work already queued this frame (no one-frame delay).
 // - G-buffer atlases are 32-bit float.
+// - the filter's kernel is a tent over (2n-1)×(2m-1) taps by default (filter=box: the paper's n×m box).
 #include "techniques/iir/IirTechnique.h"
 
 #include "scene/AreaTexture.h"
@@ -93,6 +95,10 @@ void IirTechnique::visitSettings(SettingsVisitor& v) {
     v.field("shadowMapSize", m_shadowMapSize, "paraboloid shadow map size per side, texels (paper: 256)", 16, 2048);
     v.field("tilesX", m_tilesX, "interleaved-sampling tiles n across (paper: 4)", 1, 16);
     v.field("tilesY", m_tilesY, "interleaved-sampling tiles m down (paper: 4)", 1, 16);
+    v.field("filter", m_filterKernel,
+            "geometry-aware filter kernel: tent = (2n-1) x (2m-1) taps weighted (n-|x|)(m-|y|), each VPL subset "
+            "interpolated linearly (no stair-steps; docs); box = the paper's n x m box (Fig. 5)",
+            kFilters);
     v.field("normalThreshold", m_normalThreshold, "filter beta: minimum normal dot product (paper: 0.8)", -1.0f, 1.0f);
     v.field("positionThreshold", m_positionThreshold,
             "filter alpha: maximum position distance, fraction of the scene diagonal (paper: scene-dependent, none given)",
@@ -344,6 +350,13 @@ void IirTechnique::collectCounters(Counters& out) {
     out["vplMapSamples"] = static_cast<double>(samples);
 }
 
+void IirTechnique::derivedSettings(std::map<std::string, double>& out) const {
+    out["sceneDiagonalMetres"] = m_sceneDiagonal;
+    out["positionThresholdMetres"] = static_cast<double>(m_positionThreshold) * m_sceneDiagonal;
+    out["clampDistanceMetres"] = static_cast<double>(m_clampDistance) * m_sceneDiagonal;
+    out["shadowBiasMetres"] = static_cast<double>(m_shadowBias) * m_sceneDiagonal;
+}
+
 void IirTechnique::uploadVpls() {
     const VplDistribution& dist = *m_distribution;
     const float offset = kSurfaceOffsetInDiagonals * m_sceneDiagonal;
@@ -456,6 +469,7 @@ void IirTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         setTiling(m_filter);
         m_filter.set("u_alpha", m_positionThreshold * m_sceneDiagonal);
         m_filter.set("u_beta", m_normalThreshold);
+        m_filter.set("u_tent", m_filterKernel == "box" ? 0 : 1);
         m_filter.use();
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }

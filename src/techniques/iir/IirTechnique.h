@@ -10,7 +10,10 @@
 #include "techniques/paraboloid/ParaboloidMaps.h"
 #include "techniques/iir/VplDistribution.h"
 
+#include <array>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <optional>
 #include <vector>
 
@@ -25,6 +28,7 @@ struct IirPrimaryLight {
 
 class IirTechnique final : public Technique {
 public:
+    static constexpr std::array<std::string_view, 2> kFilters{"tent", "box"};
     std::string_view name() const override { return "iir"; }
     bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
@@ -33,6 +37,9 @@ public:
     // vplMapSamples: depth samples that passed over this frame's paraboloid maps (a query read after the
     // frame is queued): the fragment work behind a map's cost (docs/techniques/iir.md, R1).
     void collectCounters(Counters& out) override;
+    // positionThresholdMetres (the filter's alpha), clampDistanceMetres (d_c), shadowBiasMetres: the
+    // settings, fractions of the scene diagonal, times the diagonal.
+    void derivedSettings(std::map<std::string, double>& out) const override;
 
     // For tests and benchmarks: the distribution, the flux each sample carries this frame (W per
     // channel, indexed by slot) and the primary light's flux.
@@ -75,6 +82,7 @@ private:
     bool m_incremental = true;
     int m_shadowMapSize = 256;
     int m_tilesX = 4, m_tilesY = 4;
+    std::string m_filterKernel{"tent"};
     float m_normalThreshold = 0.8f;
     float m_positionThreshold = 0.03f;
     float m_clampDistance = 0.05f;

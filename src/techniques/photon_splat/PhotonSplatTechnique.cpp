@@ -266,7 +266,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(m_accumFbo.id(), GL_COLOR, 1, zero);
-    const float tolerance = m_depthTolerance > 0.0f ? m_depthTolerance : kAutoToleranceTexels * 2.0f * m_half / static_cast<float>(m_mapResolution);
+    const float tolerance = depthTolerance();
     const int tiles = m_tiles.x * m_tiles.y;
     int batches = 0;
     double clusterDraws = 0.0, cullMs = 0.0;
@@ -433,6 +433,18 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
     }
+}
+
+float PhotonSplatTechnique::depthTolerance() const {
+    return m_depthTolerance > 0.0f ? m_depthTolerance : kAutoToleranceTexels * 2.0f * m_half / static_cast<float>(m_mapResolution);
+}
+
+void PhotonSplatTechnique::derivedSettings(std::map<std::string, double>& out) const {
+    out["sceneDiagonalMetres"] = glm::length(m_hi - m_lo);
+    out["mapSizeMetres"] = 2.0 * m_half;
+    out["depthToleranceMetres"] = depthTolerance();
+    if (m_stepBack > 0.0f) out["stepBackMetres"] = m_stepBack;
+    if (m_mapDepth > 0.0f) out["mapDepthMetres"] = m_mapDepth;
 }
 
 void PhotonSplatTechnique::collectCounters(Counters& out) {

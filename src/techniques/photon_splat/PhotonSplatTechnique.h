@@ -24,6 +24,10 @@ public:
     // M6: bundles per pixel (the overlap texture, read after the frame): mean and largest over the
     // pixels some bundle reached, and how many pixels that is.
     void collectCounters(Counters& out) override;
+    // mapSizeMetres (bundle width 2h; 0: a twentieth of the scene diagonal), depthToleranceMetres (0: 1/20
+    // texel of the bundle map), stepBackMetres and mapDepthMetres when set (0: per bundle, from its photon
+    // and to where its rays leave the scene's box, so no single value), sceneDiagonalMetres.
+    void derivedSettings(std::map<std::string, double>& out) const override;
     void debugViews(std::vector<DebugView>& out) const override {
         if (m_rsm) m_rsm->debugViews(out);
         // Where each bundle of the frame is centred: its photon's hit point, or where a photon's escaping
@@ -76,6 +80,7 @@ private:
     int m_blur = 5;
     std::string m_debugView{"none"};
 
+    float depthTolerance() const;  // metres: depthTolerance, or 0: kAutoToleranceTexels of a map texel
     float m_half = 0.0f, m_depth = 0.0f, m_back = 0.0f;  // bundle half width h, depth D, step back b (metres)
     float m_emitterOffset = 0.0f;                         // metres
     glm::vec3 m_lo{0.0f}, m_hi{0.0f};

@@ -347,8 +347,8 @@ void VctTechnique::updateUniforms(FrameContext& ctx) {
     }
     u.range = glm::vec4(range, range * kShU8RangeFactor, static_cast<float>(std::min<size_t>(ctx.lights.count(), VCT_MAX_LIGHTS)),
                         m_binary ? 1.0f : 0.0f);
-    const float maxDist = m_maxDistance > 0.0f ? m_maxDistance : side * std::sqrt(3.0f);
-    const float aoDist = m_aoDistance > 0.0f ? m_aoDistance : 0.25f * side;
+    const float maxDist = coneLength(side);
+    const float aoDist = aoLength(side);
     u.cone = glm::vec4(m_startOffset, std::max(m_maxStartOffset, m_startOffset), maxDist, aoDist);
     u.cone2 = glm::vec4(m_specular ? 1.0f : 0.0f, m_specularApertureScale, m_tracer == "specialised" ? 1.0f : 0.0f,
                         glm::radians(m_shadowAperture));
@@ -652,6 +652,22 @@ void VctTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     }
     m_frameSparse = sparse;
     m_listsValid = false;  // until collectCounters has seen that no list overflowed
+}
+
+float VctTechnique::coneLength(float side) const { return m_maxDistance > 0.0f ? m_maxDistance : side * std::sqrt(3.0f); }
+
+float VctTechnique::aoLength(float side) const { return m_aoDistance > 0.0f ? m_aoDistance : 0.25f * side; }
+
+void VctTechnique::derivedSettings(std::map<std::string, double>& out) const {
+    const double voxel = m_uniforms.grid.z, side = voxel * static_cast<double>(m_uniforms.grid.x);
+    const glm::vec3 origin = glm::vec3(m_uniforms.worldFromVoxel * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    out["boxSideMetres"] = side;
+    out["boxCentreXMetres"] = origin.x + 0.5 * side;
+    out["boxCentreYMetres"] = origin.y + 0.5 * side;
+    out["boxCentreZMetres"] = origin.z + 0.5 * side;
+    out["voxelSizeMetres"] = voxel;
+    out["maxDistanceMetres"] = coneLength(static_cast<float>(side));
+    out["aoDistanceMetres"] = aoLength(static_cast<float>(side));
 }
 
 void VctTechnique::collectCounters(Counters& out) {

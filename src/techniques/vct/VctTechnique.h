@@ -19,6 +19,10 @@ public:
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void collectCounters(Counters& out) override;
+    // The voxel grid as used (boxSide = 0: a cube around the scene's bounds): boxSideMetres,
+    // boxCentre{X,Y,Z}Metres, voxelSizeMetres, and the cone lengths maxDistanceMetres (0: the grid's
+    // diagonal) and aoDistanceMetres (0: a quarter of the grid's side).
+    void derivedSettings(std::map<std::string, double>& out) const override;
     void debugViews(std::vector<DebugView>& out) const override {
         for (size_t i = 1; i < kDebugViews.size(); ++i)
             out.push_back({"vct." + std::string(kDebugViews[i]), nullptr, DebugEncoding::Radiance, 1.0f, "debugView",
@@ -90,6 +94,8 @@ private:
     float m_startOffset = 1.5f;
     float m_maxStartOffset = 4.0f;
     float m_maxDistance = 0.0f;
+    float coneLength(float side) const;  // maxDistance, or 0: the grid's diagonal (metres)
+    float aoLength(float side) const;    // aoDistance, or 0: a quarter of the grid's side (metres)
     float m_aoDistance = 0.0f;
     bool m_specular = true;
     bool m_coneShadows = false;
