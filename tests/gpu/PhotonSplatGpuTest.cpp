@@ -386,3 +386,32 @@ TEST_F(PhotonSplatGpuTest, BlurSpreadsTheFootprintAndKeepsItsIntegral) {
         for (int x = 0; x < kSize; ++x) worst = std::max(worst, std::abs(blurred.at(x, y).r - expected.at(x, y).r));
     EXPECT_LT(worst, 1e-4f * level);  // float rounding of nine products
 }
+
+TEST_F(PhotonSplatGpuTest, CulledDepthMapsEqualTheMapsOfEveryCluster) {
+    // The CPU cull (ClusterSet::cull, mayOverlap) only drops (bundle, cluster) draws whose every
+    // triangle depth.vert clips: the depth atlas with it equals, bit for bit, the atlas with every
+    // cluster drawn into every bundle's map. The smallest courtyard (2,128 triangles: arcades, columns
+    // and the alpha-masked foliage) under its sun, 500 photons; the cull must also have dropped draws.
+    auto scene = loadScene("courtyard", {{"triangles", "2128"}});
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    auto atlas = [&](bool cull, double& draws) {
+        auto p = makePipeline(*scene, "photon-splat", {{"photons", "500"}}, 32);
+        splatOf(*p).setCullClusters(cull);
+        draws = p->renderFrame(0).counters.at("clusterDraws");
+        const gl::Texture& t = splatOf(*p).depthAtlas();
+        std::vector<float> texels(static_cast<size_t>(t.width()) * static_cast<size_t>(t.height()));
+        glGetTextureImage(t.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(float)), texels.data());
+        return texels;
+    };
+    double culledDraws = 0.0, allDraws = 0.0;
+    const std::vector<float> culled = atlas(true, culledDraws), all = atlas(false, allDraws);
+    ASSERT_EQ(culled.size(), all.size());
+    size_t differ = 0, written = 0;
+    for (size_t i = 0; i < all.size(); ++i) {
+        differ += culled[i] != all[i] ? 1 : 0;
+        written += all[i] < 1.0f ? 1 : 0;
+    }
+    EXPECT_EQ(differ, 0u) << "of " << all.size() << " texels";
+    EXPECT_GT(written, all.size() / 10) << "the maps hold geometry";
+    EXPECT_LT(culledDraws, 0.5 * allDraws) << culledDraws << " of " << allDraws;
+}

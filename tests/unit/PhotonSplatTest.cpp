@@ -317,3 +317,98 @@ TEST(PhotonSplatBundles, TheVolumeAndItsCullingMatchDirectGeometry) {
         }
     }
 }
+
+namespace {
+
+// A bundle from `photon` along `w` (b = d: from the photon, D past the box [lo, hi]), half width h.
+BundleVolume volumeAlong(glm::vec3 position, glm::vec3 normal, glm::vec3 w, float h, glm::vec3 lo, glm::vec3 hi) {
+    Photon ph;
+    ph.position = position;
+    ph.normal = normal;
+    ph.direction = w;
+    Bundle b;
+    b.direction = w;
+    bundleAxes(b.direction, b.right, b.up);
+    b.origin = position;
+    b.escaped = true;
+    VolumeSettings vs;
+    vs.half = h;
+    vs.stepBack = 1e30f;
+    vs.emitterOffset = 1e-3f;
+    vs.lo = lo;
+    vs.hi = hi;
+    return bundleVolume(ph, b, vs);
+}
+
+}  // namespace
+
+TEST(PhotonSplatCull, TheEmitterPlaneSeparatesBoxesBehindThePhotonsSurface) {
+    // A bundle along +z from a photon at the origin whose surface is tilted 45 degrees (normal
+    // (1, 0, 1)/sqrt 2), half width 0.1: its near plane is z = 0, its emitter plane x + z = 1e-3 sqrt 2.
+    // A box inside the square and past the near plane but behind the surface (x + z < 0) is culled;
+    // one across the surface is kept. Without the emitter plane both are kept (the face axes, the world
+    // axes and w x e_k all see the box inside the bundle's prism).
+    const glm::vec3 w(0.0f, 0.0f, 1.0f), n = glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f));
+    const BundleVolume v = volumeAlong(glm::vec3(0.0f), n, w, 0.1f, glm::vec3(-10.0f), glm::vec3(10.0f));
+    EXPECT_FALSE(mayOverlap(v, {-0.08f, -0.02f, 0.01f}, {-0.04f, 0.02f, 0.03f}));
+    EXPECT_TRUE(mayOverlap(v, {-0.02f, -0.02f, 0.05f}, {0.02f, 0.02f, 0.09f}));
+    // Along the diagonal: a box off the axis is culled, one around an axis point kept.
+    const glm::vec3 d = glm::normalize(glm::vec3(1.0f));
+    const BundleVolume diag = volumeAlong(glm::vec3(0.0f), d, d, 0.1f, glm::vec3(-10.0f), glm::vec3(10.0f));
+    EXPECT_FALSE(mayOverlap(diag, {2.0f, 0.0f, 0.0f}, {3.0f, 1.0f, 1.0f}));
+    EXPECT_TRUE(mayOverlap(diag, {2.0f, 1.8f, 1.8f}, {3.0f, 3.0f, 3.0f}));  // holds the axis point (2.5, 2.5, 2.5)
+}
+
+TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
+    // Conservative: random bundles (tilted near planes included) and random small boxes; a box that
+    // holds a sampled point of the volume (BundleVolume::contains) must never be culled, and the test
+    // must also cull.
+    Rng rng(11, 0, 0);
+    const glm::vec3 lo(-4.0f), hi(4.0f);
+    int culled = 0, boxes = 0;
+    for (int i = 0; i < 200; ++i) {
+        auto unit = [&] {
+            const float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+            return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+        };
+        const glm::vec3 p(4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f);
+        glm::vec3 n = unit(), w = unit();
+        if (glm::dot(n, w) < 0.0f) w = -w;
+        Photon ph;
+        ph.position = p;
+        ph.normal = n;
+        ph.direction = w;
+        Bundle b;
+        b.direction = w;
+        bundleAxes(b.direction, b.right, b.up);
+        b.hitDistance = 1.0f + rng.next();
+        b.hitNormal = glm::normalize(-w + 0.8f * unit());
+        VolumeSettings vs;
+        vs.half = 0.1f + 0.4f * rng.next();
+        vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
+        vs.emitterOffset = 1e-3f;
+        b.origin = p + (b.hitDistance - std::min(vs.stepBack, b.hitDistance)) * w;
+        vs.lo = lo;
+        vs.hi = hi;
+        const BundleVolume v = bundleVolume(ph, b, vs);
+        for (int k = 0; k < 40; ++k) {
+            // Boxes around the bundle: within 2.5 h of its axis, from 0.5 m behind the photon to 3 m on.
+            const float h = v.half;
+            const glm::vec3 c = p + 2.5f * h * (2.0f * rng.next() - 1.0f) * b.right + 2.5f * h * (2.0f * rng.next() - 1.0f) * b.up +
+                                (3.5f * rng.next() - 0.5f) * w;
+            const glm::vec3 e = h * (glm::vec3(0.05f) + 0.5f * glm::vec3(rng.next(), rng.next(), rng.next()));
+            const bool keep = mayOverlap(v, c - e, c + e);
+            ++boxes;
+            culled += keep ? 0 : 1;
+            if (keep) continue;
+            for (int s = 0; s < 200; ++s) {
+                const glm::vec3 q = c + e * glm::vec3(2.0f * rng.next() - 1.0f, 2.0f * rng.next() - 1.0f, 2.0f * rng.next() - 1.0f);
+                ASSERT_FALSE(v.contains(q)) << "bundle " << i << " box " << k;
+            }
+        }
+    }
+    // And it culls: measured 6356 of the 8000 boxes (the seed is fixed); without the axes w x e_k
+    // 6271, without the emitter plane 6194. The bound leaves 26 boxes for rounding across compilers.
+    EXPECT_GE(culled, 6330) << "of " << boxes;
+    EXPECT_EQ(boxes, 8000);
+}

@@ -49,28 +49,47 @@ bool outerBitsSet(ivec2 texel, int s0, int s1) {
     return false;
 }
 
-// The outer grid's verdict on one march segment p0 -> p1 of the whole segment a -> b, tested as
-// voxelMarch tests its segments: the slices between its ends' depths (+- thickness) in the column
-// under its midpoint. Segments within kOuterEndVoxels of a or b are free.
-bool outerSegmentBlocked(vec3 a, vec3 b, vec3 p0, vec3 p1, int thickness) {
-    int bits = int(u_outerVoxels.grid.z);
-    if (bits < 1) return false;
+// The outer grid's verdict on the march segments of a -> b, tested as voxelMarch tests its segments:
+// the slices between a segment's end depths (+- thickness) in the column under its midpoint; segments
+// whose midpoint lies within kOuterEndVoxels of a or b are free. What depends on a -> b alone is
+// computed once per ray (outerRay): the grid is orthographic, so its clip coordinates and view
+// depths are affine along the segment and each step interpolates them (the per-step transforms and
+// column sizes they replace were half of area-light's frame on courtyard sky; same image).
+struct OuterRay {
+    vec4 ca, cb;         // clip coordinates of a and b in the outer grid
+    float za, zb;        // their view depths
+    float skip, length;  // metres: kOuterEndVoxels voxels, |b - a|
+};
+OuterRay outerRay(vec3 a, vec3 b) {
+    OuterRay r;
     vec2 res = u_outerVoxels.grid.xy;
     // Column sides (m) of the orthographic grid: 2 / |d ndc / d world| per column count.
     mat4 m4 = u_outerVoxels.clipFromWorld;
     float column = max(2.0 / (length(vec3(m4[0][0], m4[1][0], m4[2][0])) * res.x),
                        2.0 / (length(vec3(m4[0][1], m4[1][1], m4[2][1])) * res.y));
-    float skip = kOuterEndVoxels * max(column, u_outerVoxels.depth.w);
-    vec3 m = 0.5 * (p0 + p1);
-    if (distance(m, a) < skip || distance(m, b) < skip) return false;
-    vec4 cm = u_outerVoxels.clipFromWorld * vec4(m, 1.0);
+    r.skip = kOuterEndVoxels * max(column, u_outerVoxels.depth.w);
+    r.length = distance(a, b);
+    r.ca = m4 * vec4(a, 1.0);
+    r.cb = m4 * vec4(b, 1.0);
+    r.za = -(u_outerVoxels.viewFromWorld * vec4(a, 1.0)).z;
+    r.zb = -(u_outerVoxels.viewFromWorld * vec4(b, 1.0)).z;
+    return r;
+}
+// Whether the segment between fractions t0 < t1 of the ray is blocked in the outer grid.
+bool outerSegmentBlocked(OuterRay r, float t0, float t1, int thickness) {
+    int bits = int(u_outerVoxels.grid.z);
+    if (bits < 1) return false;
+    float tm = 0.5 * (t0 + t1);
+    if (tm * r.length < r.skip || (1.0 - tm) * r.length < r.skip) return false;
+    vec4 cm = mix(r.ca, r.cb, tm);
     vec2 ndc = cm.xy / cm.w;
     if (cm.w <= 0.0 || any(greaterThan(abs(ndc), vec2(1.0)))) return false;
-    float z0 = -(u_outerVoxels.viewFromWorld * vec4(p0, 1.0)).z, z1 = -(u_outerVoxels.viewFromWorld * vec4(p1, 1.0)).z;
+    float z0 = mix(r.za, r.zb, t0), z1 = mix(r.za, r.zb, t1);
     float u0 = (min(z0, z1) - u_outerVoxels.depth.x) * u_outerVoxels.depth.z;
     float u1 = (max(z0, z1) - u_outerVoxels.depth.x) * u_outerVoxels.depth.z;
     int s0 = max(int(floor(u0)) - thickness, 0), s1 = min(int(floor(u1)) + thickness, bits - 1);
     if (s0 > s1) return false;
+    vec2 res = u_outerVoxels.grid.xy;
     return outerBitsSet(clamp(ivec2((ndc * 0.5 + 0.5) * res), ivec2(0), ivec2(res) - 1), s0, s1);
 }
 #endif
@@ -84,6 +103,9 @@ float voxelMarch(vec3 a, vec3 b, int steps, int thickness) {
     int bits = int(u_voxels.grid.z);
     vec2 res = u_voxels.grid.xy;
     float prevSlice = (za - u_voxels.depth.x) * u_voxels.depth.z;
+#ifdef SV_OUTER_GRID
+    OuterRay outer = outerRay(a, b);
+#endif
     for (int i = 1; i <= steps; ++i) {
         float t = float(i) / float(steps), tm = (float(i) - 0.5) / float(steps);
         float slice = (mix(za, zb, t) - u_voxels.depth.x) * u_voxels.depth.z;
@@ -94,7 +116,7 @@ float voxelMarch(vec3 a, vec3 b, int steps, int thickness) {
         int s0 = max(int(floor(s0f)) - thickness, 0), s1 = min(int(floor(s1f)) + thickness, bits - 1);
         if (cm.w <= 0.0 || any(greaterThan(abs(ndc), vec2(1.0))) || s0 > s1) {
 #ifdef SV_OUTER_GRID
-            if (outerSegmentBlocked(a, b, mix(a, b, float(i - 1) / float(steps)), mix(a, b, t), thickness))
+            if (outerSegmentBlocked(outer, float(i - 1) / float(steps), t, thickness))
                 return (float(i) - 1.0) / float(steps);
 #endif
             continue;

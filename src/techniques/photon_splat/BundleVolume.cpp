@@ -16,6 +16,11 @@ constexpr uint32_t kLeafClusters = 4;
 constexpr float kFarMarginFraction = 1e-3f;
 // Smallest |w.n| used to solve for a plane's depth along w (a ray parallel to the plane).
 constexpr float kMinDirectionCosine = 1e-4f;
+// Squared length below which a cross-product separating axis is degenerate (w along a world axis).
+constexpr float kMinAxisLength2 = 1e-8f;
+// Relative margin of the emitter-plane cull: a box must lie behind the plane by this fraction of the
+// plane's and the box's coordinate magnitudes (float rounding of the shader's clip distance, ~1e-7).
+constexpr float kEmitterCullMargin = 1e-5f;
 
 // 30-bit Morton code of a point in [0, 1]^3 (10 bits per axis).
 uint32_t morton(glm::vec3 p) {
@@ -131,7 +136,23 @@ bool mayOverlap(const BundleVolume& v, glm::vec3 lo, glm::vec3 hi) {
             v.corners[4][k] < lo[k] && v.corners[5][k] < lo[k] && v.corners[6][k] < lo[k] && v.corners[7][k] < lo[k])
             return false;
     }
-    return !(separated(v.right) || separated(v.up) || separated(v.nearNormal));
+    if (separated(v.right) || separated(v.up) || separated(v.nearNormal)) return false;
+    // The edges along w against the box's edges: the axes w x e_k. A long bundle crossing the scene
+    // diagonally passes its face normals' and the world axes' tests beside many boxes it misses.
+    for (int k = 0; k < 3; ++k) {
+        glm::vec3 e(0.0f);
+        e[k] = 1.0f;
+        const glm::vec3 axis = glm::cross(v.direction, e);
+        if (glm::dot(axis, axis) > kMinAxisLength2 && separated(axis)) return false;
+    }
+    // The emitter plane: a box wholly behind the photon's surface (depth.vert clips all of it), with a
+    // margin of kEmitterCullMargin of the plane's offset for rounding between here and the shader.
+    if (std::isfinite(v.emitterOffset)) {
+        const float most = glm::dot(centre, v.emitterNormal) + glm::dot(extent, glm::abs(v.emitterNormal));
+        if (most < v.emitterOffset - kEmitterCullMargin * (std::abs(v.emitterOffset) + glm::dot(glm::abs(centre) + extent, glm::abs(v.emitterNormal))))
+            return false;
+    }
+    return true;
 }
 
 ClusterSet ClusterSet::build(const Scene& scene, uint32_t maxTriangles) {

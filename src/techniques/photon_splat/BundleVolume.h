@@ -72,8 +72,7 @@ public:
     const std::vector<Cluster>& clusters() const { return m_clusters; }
     // World bounds of the clusters at time t and the BVH over them (static scenes: once).
     void update(const Scene& scene, float time);
-    // Appends the clusters whose world box may meet the volume (separating-axis test on the volume's
-    // face normals and the world axes: conservative).
+    // Appends the clusters whose world box may meet the volume (mayOverlap: conservative).
     void cull(const BundleVolume& volume, std::vector<uint32_t>& out) const;
     size_t bytes() const;  // CPU memory the clusters, their bounds and the BVH take
 
@@ -91,8 +90,9 @@ private:
     float m_time = -1.0f;
 };
 
-// Separating-axis test of a volume against an axis-aligned box (the volume's face normals right, up,
-// m and the world axes): false only when they are disjoint.
+// Separating-axis test of a volume against an axis-aligned box (the world axes, the volume's face
+// normals right, up, m, its edges along w against the box's: w x e_k), and the box against the
+// emitter plane: false only when they are disjoint.
 bool mayOverlap(const BundleVolume& volume, glm::vec3 lo, glm::vec3 hi);
 
 }  // namespace bounce::photonsplat

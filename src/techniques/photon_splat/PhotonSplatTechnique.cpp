@@ -286,7 +286,8 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             pairs.clear();
             for (int i = 0; i < n; ++i) {
                 kept.clear();
-                m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
+                if (m_cullClusters) m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
+                else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) kept.push_back(c);
                 for (uint32_t c : kept) pairs.push_back({c, static_cast<uint32_t>(first + i)});
             }
             perCluster.assign(m_clusters.clusters().size() + 1, 0u);

@@ -51,6 +51,8 @@ public:
     const gl::Texture& depthAtlas() const { return m_maps; }
     // Tests: use these photons every frame instead of shooting them (stratification still applies).
     void setFixedPhotons(std::vector<photonsplat::Photon> photons) { m_fixedPhotons = std::move(photons); }
+    // Tests: off draws every cluster into every bundle's map (the culling must not change the maps).
+    void setCullClusters(bool on) { m_cullClusters = on; }
 
 private:
     void updateGeometry(FrameContext& ctx);
@@ -91,6 +93,7 @@ private:
     float m_casterTime = -1.0f;
     std::vector<photonsplat::Photon> m_photonList;
     std::optional<std::vector<photonsplat::Photon>> m_fixedPhotons;
+    bool m_cullClusters = true;
     std::vector<photonsplat::Bundle> m_bundles;
     std::vector<photonsplat::BundleVolume> m_volumes;
     // Per-frame CPU work space, kept across frames (the soak test holds the process's memory flat).
