@@ -44,13 +44,15 @@ layout(local_size_x = 64) in;
 #else
 layout(local_size_x = 256) in;
 #endif
+// After the local size: dispatch.glsl reads gl_WorkGroupSize.
+#include "common/dispatch.glsl"
 
 #if RAD_PASS == 0
 uniform float u_offset;   // metres off the surface
 uniform float u_near;     // metres
 uniform int u_rotate;     // random per-position rotation
 void main() {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = linearInvocation();
     if (k >= u_count) return;
     bool old = u_old != 0;
     vec3 p, n;
@@ -83,7 +85,8 @@ void main() {
 #elif RAD_PASS == 1
 shared vec4 s_sum[64][3];
 void main() {
-    uint q = u_first + gl_WorkGroupID.x;
+    if (linearGroup() >= u_count) return;  // the grid's last row (whole groups: uniform control flow)
+    uint q = u_first + linearGroup();
     RadQuadGpu quad = u_quads[q];
     uint n = quad.atlas.z * quad.atlas.w;
     vec4 unshot = vec4(0.0), shot = vec4(0.0), total = vec4(0.0);
@@ -169,7 +172,7 @@ void main() {
         }
         return;
     }
-    uint ei = gl_GlobalInvocationID.x;
+    uint ei = linearInvocation();
     if (ei >= u_count) return;
     RadElementGpu e = u_elements[ei];
     bool moving = radBodyMoving(e.info.z);
@@ -251,7 +254,7 @@ uniform int u_samples;
 uniform int u_resolution;
 void main() {
     uint R = uint(u_resolution);
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linearInvocation();
     if (i >= R * R * u_count) return;
     ivec3 c = ivec3(int(i % R), int((i / R) % R), int(i / (R * R)));
     vec4 v = vec4(0.0);
@@ -266,7 +269,7 @@ uniform int u_samples;
 uniform int u_resolution;
 void main() {
     uint R = uint(u_resolution);
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linearInvocation();
     if (i >= R * R * u_count) return;
     ivec3 c = ivec3(int(i % R), int((i / R) % R), int(i / (R * R)));
     vec4 v = vec4(0.0);
@@ -283,7 +286,7 @@ void main() {
 uniform int u_accumulate;
 uniform int u_receivers;
 void main() {
-    uint ei = gl_GlobalInvocationID.x;
+    uint ei = linearInvocation();
     if (ei >= u_count) return;
     RadElementGpu e = u_elements[ei];
     ivec2 t = texelOf(e);
