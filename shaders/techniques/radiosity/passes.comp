@@ -85,10 +85,12 @@ void main() {
 #elif RAD_PASS == 1
 shared vec4 s_sum[64][3];
 void main() {
-    if (linearGroup() >= u_count) return;  // the grid's last row (whole groups: uniform control flow)
-    uint q = u_first + linearGroup();
+    // The grid's last row has groups past the quads; they sum nothing and store nothing (no return:
+    // GLSL 4.5 disallows barrier() after one).
+    bool live = linearGroup() < u_count;
+    uint q = u_first + (live ? linearGroup() : 0u);
     RadQuadGpu quad = u_quads[q];
-    uint n = quad.atlas.z * quad.atlas.w;
+    uint n = live ? quad.atlas.z * quad.atlas.w : 0u;
     vec4 unshot = vec4(0.0), shot = vec4(0.0), total = vec4(0.0);
     for (uint i = gl_LocalInvocationID.x; i < n; i += 64u) {
         RadElementGpu e = u_elements[quad.info.y + i];
@@ -107,7 +109,7 @@ void main() {
             for (int c = 0; c < 3; ++c) s_sum[gl_LocalInvocationID.x][c] += s_sum[gl_LocalInvocationID.x + stride][c];
         barrier();
     }
-    if (gl_LocalInvocationID.x == 0u) {
+    if (live && gl_LocalInvocationID.x == 0u) {
         // [3q]: unshot power (sum A Bu) and area; [3q+1]: shot power; [3q+2]: total power.
         u_stats[3u * q] = s_sum[0][0];
         u_stats[3u * q + 1u] = s_sum[0][1];
