@@ -28,6 +28,9 @@ public:
     void profileDefaults(std::string_view, bool&, const PerProfile<bool>& d) override {
         pending = fmt::format("llvmpipe {}, gpu {}", d.llvmpipe, d.gpu);
     }
+    void profileDefaults(std::string_view, std::string&, const PerProfile<std::string_view>& d) override {
+        pending = fmt::format("llvmpipe {}, gpu {}", d.llvmpipe, d.gpu);
+    }
     void push(SettingDescription d) {
         d.profileDefaults = std::exchange(pending, {});
         out.push_back(std::move(d));
@@ -120,6 +123,9 @@ protected:
     void profileDefaults(std::string_view, int& v, const PerProfile<int>& d) override { v = d[m_profile]; }
     void profileDefaults(std::string_view, float& v, const PerProfile<float>& d) override { v = d[m_profile]; }
     void profileDefaults(std::string_view, bool& v, const PerProfile<bool>& d) override { v = d[m_profile]; }
+    void profileDefaults(std::string_view, std::string& v, const PerProfile<std::string_view>& d) override {
+        v = std::string(d[m_profile]);
+    }
 
 private:
     DeviceProfile m_profile;

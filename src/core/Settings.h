@@ -43,12 +43,18 @@ public:
         profileDefaults(name, value, defaults);
         field(name, value, doc);
     }
+    void field(std::string_view name, std::string& value, std::string_view doc, std::span<const std::string_view> choices,
+               const PerProfile<std::string_view>& defaults) {
+        profileDefaults(name, value, defaults);
+        field(name, value, doc, choices);
+    }
 
 protected:
     // Called before the field of a setting with per-profile defaults; most visitors ignore it.
     virtual void profileDefaults(std::string_view, int&, const PerProfile<int>&) {}
     virtual void profileDefaults(std::string_view, float&, const PerProfile<float>&) {}
     virtual void profileDefaults(std::string_view, bool&, const PerProfile<bool>&) {}
+    virtual void profileDefaults(std::string_view, std::string&, const PerProfile<std::string_view>&) {}
 };
 
 // Anything with visit(SettingsVisitor&).

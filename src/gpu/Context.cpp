@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <stdexcept>
 #include <string_view>
 
 namespace bounce::gl {
@@ -62,6 +63,26 @@ ContextConfig measuredContextConfig() {
 }
 
 int shaderLoopIterationBudget() { return shaderLoopIterationBudget(currentProfile()); }
+
+std::string resetStatusMessage(GLenum status) {
+    switch (status) {
+        case GL_NO_ERROR: return {};
+        case GL_GUILTY_CONTEXT_RESET:
+            return "the GPU was reset and this context lost (GL_GUILTY_CONTEXT_RESET: bounce's own work caused it, typically a draw "
+                   "past the driver's watchdog); try smaller settings or a smaller --size";
+        case GL_INNOCENT_CONTEXT_RESET:
+            return "the GPU was reset and this context lost (GL_INNOCENT_CONTEXT_RESET: another process caused it); run again";
+        default:
+            return "the GPU was reset and this context lost (GL_UNKNOWN_CONTEXT_RESET); run again, with smaller settings if it recurs";
+    }
+}
+
+void throwIfContextReset() {
+    const Context* c = Context::current();
+    if (!c || !c->info().resetNotification) return;
+    const std::string m = resetStatusMessage(glGetGraphicsResetStatus());
+    if (!m.empty()) throw std::runtime_error(m);
+}
 
 bool portableLimitsMode() {
     const char* v = std::getenv("BOUNCE_PORTABLE_LIMITS");
@@ -141,6 +162,7 @@ Expected<void> Context::initialise(const ContextConfig& config, std::string plat
     i.maxColorTextureSamples = getInt(GL_MAX_COLOR_TEXTURE_SAMPLES);
     i.maxDepthTextureSamples = getInt(GL_MAX_DEPTH_TEXTURE_SAMPLES);
     glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &i.timerQueryBits);
+    i.resetNotification = getInt(GL_RESET_NOTIFICATION_STRATEGY) == GL_LOSE_CONTEXT_ON_RESET;
     for (const char* ext : {"GL_NV_shader_atomic_float", "GL_ARB_shader_draw_parameters", "GL_ARB_indirect_parameters",
                             "GL_ARB_bindless_texture", "GL_NV_conservative_raster", "GL_ARB_shader_atomic_counter_ops",
                             "GL_ARB_gpu_shader_int64"})
@@ -186,6 +208,7 @@ std::string formatInfo(const GpuInfo& i) {
                      i.maxStorageBlocks[2], i.maxStorageBlocks[3]);
     s += fmt::format("    uniform blocks            {} / {} / {} / {}\n", i.maxUniformBlocks[0], i.maxUniformBlocks[1],
                      i.maxUniformBlocks[2], i.maxUniformBlocks[3]);
+    s += fmt::format("  reset notification          {}\n", i.resetNotification ? "lose context on reset" : "none");
     s += "extensions\n";
     for (const auto& [name, present] : i.extensions) s += fmt::format("  {:34} {}\n", name, present ? "yes" : "no");
     return s;

@@ -48,6 +48,9 @@ public:
     virtual void swapBuffers() {}
 
     const GpuInfo& info() const { return m_info; }
+    // Tests answer as another device profile would (the loop budget, per-profile refusals) on the
+    // context they share; BOUNCE_PROFILE does the same for a whole process.
+    void setProfileForTests(DeviceProfile profile) { m_info.profile = profile; }
     // The empty VAO that attribute-less passes bind (core profile needs one bound to draw).
     void bindEmptyVertexArray() const { m_emptyVao.bind(); }
 
@@ -78,5 +81,10 @@ std::string formatInfo(const GpuInfo& info);
 DeviceProfile currentProfile();
 // True when BOUNCE_PORTABLE_LIMITS is set to 1 (the portable-limits mode, gpu/PortableLimits.h).
 bool portableLimitsMode();
+// The one-line message of a glGetGraphicsResetStatus value ("" for GL_NO_ERROR; issue 29 #22).
+std::string resetStatusMessage(GLenum status);
+// Throws std::runtime_error with that message when the current context, created with reset
+// notification, was lost to a GPU reset (Pipeline checks after every frame; the CLI prints one line).
+void throwIfContextReset();
 
 }  // namespace bounce::gl

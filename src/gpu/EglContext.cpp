@@ -137,10 +137,24 @@ Expected<Opened> open(EGLDisplay display, const ContextConfig& config, const std
         eglTerminate(display);
         return makeError("EGL: no OpenGL config on the {}", where);
     }
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_CONTEXT_OPENGL_DEBUG, config.debugOutput ? EGL_TRUE : EGL_FALSE, EGL_NONE};
-    o.context = eglCreateContext(display, noConfig ? EGL_NO_CONFIG_KHR : eglConfig, EGL_NO_CONTEXT, contextAttribs);
+    // Reset notification (issue 29 #22): a context lost to a GPU reset (a watchdog, another process's
+    // fault) then says so through glGetGraphicsResetStatus, which Pipeline checks after every frame,
+    // instead of rendering nothing silently. EGL 1.5's attribute; a display that refuses it gets a
+    // context without (GL_RESET_NOTIFICATION_STRATEGY then reads GL_NO_RESET_NOTIFICATION).
+    const bool egl15 = o.major > 1 || (o.major == 1 && o.minor >= 5);
+    for (const bool robust : {egl15, false}) {
+        EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_CONTEXT_OPENGL_DEBUG, config.debugOutput ? EGL_TRUE : EGL_FALSE,
+                                   EGL_NONE, EGL_NONE, EGL_NONE};
+        if (robust) {
+            contextAttribs[8] = EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY;
+            contextAttribs[9] = EGL_LOSE_CONTEXT_ON_RESET;
+        }
+        o.context = eglCreateContext(display, noConfig ? EGL_NO_CONFIG_KHR : eglConfig, EGL_NO_CONTEXT, contextAttribs);
+        if (o.context != EGL_NO_CONTEXT || !robust) break;
+        eglGetError();  // refused with the attribute: try without
+    }
     if (o.context == EGL_NO_CONTEXT) {
         const EGLint err = eglGetError();
         eglTerminate(display);

@@ -39,6 +39,7 @@ struct GpuInfo {
     int maxUniformBlocks[4] = {0, 0, 0, 0};
     int maxColorTextureSamples = 0, maxDepthTextureSamples = 0;
     int timerQueryBits = 0;
+    bool resetNotification = false;  // GL_RESET_NOTIFICATION_STRATEGY is GL_LOSE_CONTEXT_ON_RESET (issue 29 #22)
     std::vector<std::pair<std::string, bool>> extensions;  // extensions techniques care about
 };
 

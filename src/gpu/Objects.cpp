@@ -2,6 +2,7 @@
 
 #include "core/Check.h"
 #include "gpu/Context.h"
+#include "gpu/MemoryCheck.h"
 
 #include <spdlog/spdlog.h>
 
@@ -41,10 +42,31 @@ uint64_t& bytesOf(Ledger& l, ObjectKind kind) { return kind == ObjectKind::Buffe
 void throwIfOutOfMemory(std::string_view what, std::string_view name, uint64_t bytes) {
     bool outOfMemory = false;
     for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) outOfMemory |= e == GL_OUT_OF_MEMORY;
-    if (outOfMemory)
-        throw std::runtime_error(fmt::format("out of GPU memory allocating {} '{}' ({:.1f} MB): try a smaller --size or "
-                                             "smaller settings",
-                                             what, name, static_cast<double>(bytes) * 1e-6));
+    if (outOfMemory) throw std::runtime_error(outOfMemoryMessage(what, name, bytes, true, std::nullopt));
+}
+
+// Video memory free as the driver reports it (gpu/MemoryCheck.h), nullopt without either extension
+// (llvmpipe, Mesa's hardware drivers, Intel).
+std::optional<uint64_t> freeVideoMemoryBytes() {
+    constexpr GLenum kNvxCurrentAvailableKiB = 0x9049;  // GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX
+    constexpr GLenum kAtiTextureFreeMemory = 0x87FC;    // GL_TEXTURE_FREE_MEMORY_ATI: 4 values, [0] total free KiB
+    if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+        GLint kib = 0;
+        glGetIntegerv(kNvxCurrentAvailableKiB, &kib);
+        return static_cast<uint64_t>(kib) * 1024u;
+    }
+    if (epoxy_has_gl_extension("GL_ATI_meminfo")) {
+        GLint v[4] = {0, 0, 0, 0};
+        glGetIntegerv(kAtiTextureFreeMemory, v);
+        return static_cast<uint64_t>(v[0]) * 1024u;
+    }
+    return std::nullopt;
+}
+
+// Before an allocation: refuse one past the video memory the driver reports free (issue 29 #21).
+void throwIfPastFreeMemory(std::string_view what, std::string_view name, uint64_t bytes) {
+    const std::string m = outOfMemoryMessage(what, name, bytes, false, freeVideoMemoryBytes());
+    if (!m.empty()) throw std::runtime_error(m);
 }
 
 }  // namespace
@@ -137,6 +159,7 @@ uint64_t textureStorageBytes(const TextureDesc& d) {
 
 Buffer Buffer::create(std::string_view name, size_t bytes, const void* data, GLbitfield flags) {
     BOUNCE_CHECK(bytes > 0, "buffer '{}' of zero size", name);
+    throwIfPastFreeMemory("buffer", name, bytes);
     GLuint id = 0;
     glCreateBuffers(1, &id);
     Buffer b;
@@ -184,12 +207,13 @@ Texture Texture::createBufferView(std::string_view name, const Buffer& buffer, G
 Texture Texture::create(std::string_view name, const TextureDesc& desc) {
     BOUNCE_CHECK(desc.width > 0 && desc.height > 0 && desc.depth > 0 && desc.levels > 0, "texture '{}' has size {}x{}x{}",
                  name, desc.width, desc.height, desc.depth);
+    const uint64_t bytes = textureStorageBytes(desc);
+    throwIfPastFreeMemory("texture", name, bytes);
     GLuint id = 0;
     glCreateTextures(desc.target, 1, &id);
     Texture t;
     t.m_handle = Handle<TextureTraits>(id);
     t.m_desc = desc;
-    const uint64_t bytes = textureStorageBytes(desc);
     const auto allocated = [&] {
         throwIfOutOfMemory("texture", name, bytes);
         ledger::storage(ObjectKind::Texture, id, bytes);

@@ -1,4 +1,5 @@
 #include "gpu/Program.h"
+#include "gpu/ShaderLog.h"
 
 #include "core/Check.h"
 #include "core/FileIo.h"
@@ -32,13 +33,6 @@ Expected<std::string> shaderFileText(const std::string& file) {
     return makeError("shader file '{}' not found under shaders/", file);
 }
 
-// Where each line of the assembled source came from. Drivers differ in how they honour the
-// source-string number of "#line" (Mesa always reports 0), so no #line is emitted: the compiler's
-// line numbers are positions in the assembled text, mapped back through this table.
-struct LineOrigin {
-    std::string file;
-    int line = 0;
-};
 
 void appendLine(std::string& out, std::vector<LineOrigin>& origins, const std::string& text, const std::string& file,
                 int line) {
@@ -66,26 +60,6 @@ Expected<void> expand(const std::string& file, std::vector<LineOrigin>& origins,
         }
     }
     return {};
-}
-
-// Rewrites "0:12(5):" (Mesa) and "0(12) :" (NVIDIA) prefixes into "file:line:".
-std::string mapLog(const std::string& log, const std::vector<LineOrigin>& origins) {
-    static const std::regex re(R"((^|\n)(\d+)(?::(\d+)\((\d+)\)|\((\d+)\))\s*:?)");
-    std::string result;
-    auto begin = log.cbegin();
-    std::smatch m;
-    while (std::regex_search(begin, log.cend(), m, re)) {
-        result.append(begin, m[0].first);
-        const size_t lineNo = std::stoul(m[3].matched ? m[3].str() : m[5].str());
-        if (lineNo >= 1 && lineNo <= origins.size())
-            result += m[1].str() + fmt::format("{}:{}:", origins[lineNo - 1].file, origins[lineNo - 1].line);
-        else
-            result += m[0].str();
-        begin = m[0].second;
-    }
-    result.append(begin, log.cend());
-    while (!result.empty() && (result.back() == '\n' || result.back() == '\0')) result.pop_back();
-    return result;
 }
 
 Expected<std::string> assemble(const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
@@ -145,7 +119,7 @@ Expected<Program> Program::build(const ProgramDesc& desc) {
             std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
             glGetShaderInfoLog(shader, length, nullptr, log.data());
             return makeError("program '{}': {} shader {} failed to compile:\n{}", desc.label, stageName(stage), file,
-                             mapLog(log, origins));
+                             mapShaderLog(log, origins));
         }
         glAttachShader(program, shader);
     }

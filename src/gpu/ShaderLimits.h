@@ -9,8 +9,8 @@ namespace bounce::gl {
 // Mesa's llvmpipe ends every loop of one shader invocation once all its loops together have run this
 // many iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop in a shader"),
 // silently: a gather over 131072 VPLs in one invocation drops about half of them. It is llvmpipe's
-// budget only; code that refuses settings or sizes batches by it should ask shaderLoopIterationBudget()
-// (the current device's), which the files still naming this constant do not yet (issue 29 #13).
+// budget only; code that refuses settings or sizes batches by it asks shaderLoopIterationBudget() (the
+// current device profile's; issue 29 #19).
 inline constexpr int kShaderLoopIterationBudget = 65535;
 
 // On a GPU nothing counts loop iterations; what bounds a draw is the driver's watchdog (Windows TDR's

@@ -179,6 +179,7 @@ FrameStats Pipeline::renderFrame(uint32_t frame, float time, const Camera* camer
     stats.counters["triangles"] = static_cast<double>(m_sceneGpu.triangleCount(render::DrawFilter::All));
     stats.resources = gl::liveResources();
     stats.residentBytes = residentBytes();
+    gl::throwIfContextReset();  // a frame on a context lost to a GPU reset rendered nothing (issue 29 #22)
     return stats;
 }
 

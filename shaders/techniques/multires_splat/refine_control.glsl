@@ -1,5 +1,5 @@
 // refinePass=compute's control block (BINDING_SSBO_TECH3), shared by refine.comp and refine_reset.comp:
-// per ping-pong side the next pass's dispatch size (groups x, regions, 1), then per side and region (list)
+// per ping-pong side the next pass's dispatch size (groups x, regions, rows z of x groups), then per side and region (list)
 // a DrawArraysIndirectCommand whose count is the list's length, which the splat draws indirectly.
 struct DrawCommand {
     uint count;

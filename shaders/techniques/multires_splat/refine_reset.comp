@@ -1,7 +1,7 @@
 // refinePass=compute: empties the destination side of the refinement's control block before a pass
 // (refine.comp): every region's count 0, its first entry at region * u_regionStride, the instance count
 // the final list is drawn with (mode B's splat: one instance per VPL; mode A and the stencil marks: 1),
-// and the next dispatch's groups (0 x regions x 1, grown by refine.comp).
+// and the next dispatch's groups (0 x regions x 1, x and z grown by refine.comp).
 // Host uniforms: u_side, u_regions, u_regionStride, u_instances. Output: BINDING_SSBO_TECH3.
 layout(local_size_x = 64) in;
 #include "techniques/multires_splat/refine_control.glsl"

@@ -44,13 +44,15 @@ layout(local_size_x = 64) in;
 #else
 layout(local_size_x = 256) in;
 #endif
+// After the local size: dispatch.glsl reads gl_WorkGroupSize.
+#include "common/dispatch.glsl"
 
 #if RAD_PASS == 0
 uniform float u_offset;   // metres off the surface
 uniform float u_near;     // metres
 uniform int u_rotate;     // random per-position rotation
 void main() {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = linearInvocation();
     if (k >= u_count) return;
     bool old = u_old != 0;
     vec3 p, n;
@@ -83,9 +85,12 @@ void main() {
 #elif RAD_PASS == 1
 shared vec4 s_sum[64][3];
 void main() {
-    uint q = u_first + gl_WorkGroupID.x;
+    // The grid's last row has groups past the quads; they sum nothing and store nothing (no return:
+    // GLSL 4.5 disallows barrier() after one).
+    bool live = linearGroup() < u_count;
+    uint q = u_first + (live ? linearGroup() : 0u);
     RadQuadGpu quad = u_quads[q];
-    uint n = quad.atlas.z * quad.atlas.w;
+    uint n = live ? quad.atlas.z * quad.atlas.w : 0u;
     vec4 unshot = vec4(0.0), shot = vec4(0.0), total = vec4(0.0);
     for (uint i = gl_LocalInvocationID.x; i < n; i += 64u) {
         RadElementGpu e = u_elements[quad.info.y + i];
@@ -104,7 +109,7 @@ void main() {
             for (int c = 0; c < 3; ++c) s_sum[gl_LocalInvocationID.x][c] += s_sum[gl_LocalInvocationID.x + stride][c];
         barrier();
     }
-    if (gl_LocalInvocationID.x == 0u) {
+    if (live && gl_LocalInvocationID.x == 0u) {
         // [3q]: unshot power (sum A Bu) and area; [3q+1]: shot power; [3q+2]: total power.
         u_stats[3u * q] = s_sum[0][0];
         u_stats[3u * q + 1u] = s_sum[0][1];
@@ -169,7 +174,7 @@ void main() {
         }
         return;
     }
-    uint ei = gl_GlobalInvocationID.x;
+    uint ei = linearInvocation();
     if (ei >= u_count) return;
     RadElementGpu e = u_elements[ei];
     bool moving = radBodyMoving(e.info.z);
@@ -251,7 +256,7 @@ uniform int u_samples;
 uniform int u_resolution;
 void main() {
     uint R = uint(u_resolution);
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linearInvocation();
     if (i >= R * R * u_count) return;
     ivec3 c = ivec3(int(i % R), int((i / R) % R), int(i / (R * R)));
     vec4 v = vec4(0.0);
@@ -266,7 +271,7 @@ uniform int u_samples;
 uniform int u_resolution;
 void main() {
     uint R = uint(u_resolution);
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linearInvocation();
     if (i >= R * R * u_count) return;
     ivec3 c = ivec3(int(i % R), int((i / R) % R), int(i / (R * R)));
     vec4 v = vec4(0.0);
@@ -283,7 +288,7 @@ void main() {
 uniform int u_accumulate;
 uniform int u_receivers;
 void main() {
-    uint ei = gl_GlobalInvocationID.x;
+    uint ei = linearInvocation();
     if (ei >= u_count) return;
     RadElementGpu e = u_elements[ei];
     ivec2 t = texelOf(e);

@@ -20,6 +20,8 @@
 #include "techniques/radiosity/hemicube.glsl"
 
 layout(local_size_x = 64) in;
+// After the local size: dispatch.glsl reads gl_WorkGroupSize.
+#include "common/dispatch.glsl"
 
 layout(std140, binding = BINDING_UBO_PASS) uniform RadPassBlock { RadPassUniforms u_pass; };
 layout(std430, binding = BINDING_SSBO_RAD_ELEMENTS) readonly buffer RadElementBlock { RadElementGpu u_elements[]; };
@@ -141,7 +143,7 @@ vec3 projectedRadiosity(uint k, RadShooterGpu s, bool old, vec3 x, vec3 n) {
 }
 
 void main() {
-    uint ei = gl_GlobalInvocationID.x;
+    uint ei = linearInvocation();
     if (ei >= u_pass.counts.x) return;
     RadElementGpu e = u_elements[ei];
     if (e.albedo.r + e.albedo.g + e.albedo.b <= 0.0) return;  // emitters reflect nothing

@@ -17,6 +17,15 @@ uint packVoxel(ivec3 p) { return uint(p.x) | (uint(p.y) << 10) | (uint(p.z) << 2
 ivec3 unpackVoxel(uint v) { return ivec3(v & 1023u, (v >> 10) & 1023u, (v >> 20) & 1023u); }
 
 #ifdef VCT_WRITE
+// Counters: [0] voxel writes, [1] triangles voxelized in the geometry shader (pass 1),
+// [2] triangles deferred to pass 2, [3] writes dropped by a compare-and-swap loop that lost
+// VCT_CAS_RETRIES races in a row (issue 29 #18; the counter casDrops); [4..7] pass 2's indirect command;
+// [8] triangles whose voxel box may pass the loop budget in one geometry-shader invocation (#10).
+layout(std430, binding = BINDING_SSBO_TECH1) coherent buffer VctCounters { uint c_counts[12]; };
+#ifndef VCT_CAS_RETRIES
+#define VCT_CAS_RETRIES 255
+#endif
+void countCasDrop() { atomicAdd(c_counts[3], 1u); }
 layout(binding = BINDING_IMG0, r32ui) uniform coherent volatile uimage3D i_iso;
 #if VCT_STORAGE == VCT_STORAGE_SH_F32
 #if VCT_FLOAT_ATOMICS
@@ -31,20 +40,21 @@ void addSh(int c, ivec3 p, float v) {
 #else
 // Without GL_NV_shader_atomic_float (AMD, Intel): the R32F volumes bound through r32ui views and the
 // float added by a compare-and-swap loop on its bits (bounded like Fig. B.1's; a write that loses
-// 255 races in a row is dropped, far beyond a voxel's writes in a frame).
+// VCT_CAS_RETRIES races in a row is dropped and counted, casDrops).
 layout(binding = BINDING_IMG1, r32ui) uniform coherent uimage3D i_shR;
 layout(binding = BINDING_IMG2, r32ui) uniform coherent uimage3D i_shG;
 layout(binding = BINDING_IMG3, r32ui) uniform coherent uimage3D i_shB;
 uint casAdd(uint current, float v) { return floatBitsToUint(uintBitsToFloat(current) + v); }
 void addSh(int c, ivec3 p, float v) {
     uint current = c == 0 ? imageLoad(i_shR, p).r : (c == 1 ? imageLoad(i_shG, p).r : imageLoad(i_shB, p).r);
-    for (int i = 0; i < 255; ++i) {
+    for (int i = 0; i < VCT_CAS_RETRIES; ++i) {
         uint previous = c == 0 ? imageAtomicCompSwap(i_shR, p, current, casAdd(current, v))
                       : (c == 1 ? imageAtomicCompSwap(i_shG, p, current, casAdd(current, v))
                                 : imageAtomicCompSwap(i_shB, p, current, casAdd(current, v)));
-        if (previous == current) break;
+        if (previous == current) return;
         current = previous;
     }
+    countCasDrop();
 }
 #endif
 layout(binding = BINDING_IMG4, r32ui) uniform coherent uimage3D i_count;
@@ -58,9 +68,6 @@ layout(std430, binding = BINDING_SSBO_TECH0) coherent buffer ActiveList0 {
     uint a_capacity, a_pad0, a_pad1, a_pad2;
     uint a_voxels[];
 };
-// Counters: [0] voxel writes, [1] triangles voxelized in the geometry shader (pass 1),
-// [2] triangles deferred to pass 2.
-layout(std430, binding = BINDING_SSBO_TECH1) coherent buffer VctCounters { uint c_counts[8]; };
 
 uint packRgbCount(vec4 v) {
     uvec4 u = uvec4(clamp(v, vec4(0.0), vec4(255.0)) + vec4(0.5, 0.5, 0.5, 0.0));
@@ -74,17 +81,19 @@ void imageAtomicAverageRgba8(ivec3 p, vec3 value01) {
     uint next = packRgbCount(vec4(value01 * 255.0, 1.0));
     uint current = 0u;
     uint previous;
-    // Bounded: under contention each retry makes progress for one writer; 255 retries is far more
-    // than the writes one voxel receives in a frame (and the count saturates at 255 anyway).
-    for (int i = 0; i < 255; ++i) {
+    // Bounded: under contention each retry makes progress for one writer; 255 retries (casRetries'
+    // default) is far more than the writes one voxel receives in a frame (and the count saturates at
+    // 255 anyway). A write that loses them all is dropped and counted (casDrops).
+    for (int i = 0; i < VCT_CAS_RETRIES; ++i) {
         previous = imageAtomicCompSwap(i_iso, p, current, next);
-        if (previous == current) break;
+        if (previous == current) return;
         current = previous;
         vec4 c = unpackRgbCount(current);
         float count = c.a;
         vec3 average = (c.rgb / 255.0 * count + value01) / (count + 1.0);
         next = packRgbCount(vec4(average * 255.0, min(count + 1.0, 255.0)));
     }
+    countCasDrop();
 }
 
 // One voxel p (unswizzled) of a surface reflecting `radiance` W/(m^2 sr).

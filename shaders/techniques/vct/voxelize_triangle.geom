@@ -6,7 +6,15 @@
 // corners, to the large-triangle buffer that pass 2 draws indirectly (large.vert).
 // Attributes per voxel are interpolated by hand (the thesis: "the triangle-parallel path must
 // interpolate attributes manually"): barycentrics of the voxel column's centre on the plane.
-// Defines: VCT_STORAGE, VCT_CONSERVATIVE (0/1), VCT_HYBRID (0/1). Emits no primitives.
+// The box is split over VCT_INVOCATIONS geometry-shader invocations, invocation i taking rows
+// bmin.x + i, + VCT_INVOCATIONS, ...: one invocation looping over a large triangle's whole box (~10^6
+// iterations at N=512) outlasts a GPU watchdog, and past llvmpipe's loop budget its loops end
+// silently (issue 29 #10). Invocation 0 counts a triangle whose share of the box's voxels may pass
+// u_loopBudget (c_counts[8], the counter oversizedTriangles, warned about by the host). The estimate
+// leaves out the injection's own loops (a lower bound: on llvmpipe one invocation a triangle lost a
+// quarter of cornell-box's writes at N=64 uncounted, hence the default of 8).
+// Defines: VCT_STORAGE, VCT_CONSERVATIVE (0/1), VCT_HYBRID (0/1), VCT_INVOCATIONS (1..32; the GL 4.5
+// minimum of GL_MAX_GEOMETRY_SHADER_INVOCATIONS is 32). Uniform: u_loopBudget. Emits no primitives.
 #if VCT_STORAGE == 2 && VCT_FLOAT_ATOMICS  // SH_F32 (vct_shared.h is not included yet) with float atomics
 #extension GL_NV_shader_atomic_float : require
 #endif
@@ -16,7 +24,10 @@
 #include "techniques/vct/overlap.glsl"
 #include "techniques/vct/inject.glsl"
 
-layout(triangles) in;
+#ifndef VCT_INVOCATIONS
+#define VCT_INVOCATIONS 1
+#endif
+layout(triangles, invocations = VCT_INVOCATIONS) in;
 layout(points, max_vertices = 1) out;
 
 in vec3 vg_posWorld[];
@@ -24,6 +35,8 @@ in vec3 vg_normal[];
 in vec2 vg_uv[];
 flat in uint vg_object[];
 flat in uint vg_vertex[];
+
+uniform uint u_loopBudget;  // the device profile's shader loop budget (gl::shaderLoopIterationBudget)
 
 #if VCT_HYBRID
 layout(std430, binding = BINDING_SSBO_TECH3) writeonly buffer LargeTriangles { uvec2 l_corners[]; };
@@ -41,6 +54,7 @@ void main() {
     // plane, in voxel units^2 (t.n.z = |cross(e0, e1)| along the depth axis = twice that area).
     float projectedArea = 0.5 * t.n.z;
     if (projectedArea > u_vct.voxelize.y) {
+        if (gl_InvocationID != 0) return;
         uint slot = atomicAdd(c_counts[4], 3u) / 3u;  // the pass-2 DrawArraysIndirectCommand's count
         atomicAdd(c_counts[2], 1u);
         if (slot < u_largeCapacity) {
@@ -49,14 +63,21 @@ void main() {
         return;
     }
 #endif
-    atomicAdd(c_counts[1], 1u);
+    if (gl_InvocationID == 0) {
+        atomicAdd(c_counts[1], 1u);
+        // This invocation's loop iterations at most: its rows x the box's columns x (depth range + 1),
+        // plus the row loop itself.
+        uvec3 box = uvec3(t.bmax - t.bmin + 1);
+        uint rows = (box.x + uint(VCT_INVOCATIONS) - 1u) / uint(VCT_INVOCATIONS);
+        if (float(rows) * float(box.y) * float(box.z + 1u) + float(rows) > float(u_loopBudget)) atomicAdd(c_counts[8], 1u);  // float: no 32-bit overflow
+    }
     uint material = u_objects[vg_object[0]].info.x;
     bool twoSided = u_materials[material].params.w > 0.5;
     bool masked = u_materials[material].alpha.x > 0.0;
     // Barycentric set-up in the dominant (XY) projection, never degenerate after the swizzle.
     vec2 a = t.v0.xy, b = t.v1.xy, c = t.v2.xy;
     float area2 = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-    for (int x = t.bmin.x; x <= t.bmax.x; ++x) {
+    for (int x = t.bmin.x + gl_InvocationID; x <= t.bmax.x; x += VCT_INVOCATIONS) {
         for (int y = t.bmin.y; y <= t.bmax.y; ++y) {
             vec2 p = vec2(x, y);
             if (!voxTestXY(t, p)) continue;

@@ -309,7 +309,7 @@ int AreaLightTechnique::vplsPerDraw() const {
     // cell's 25 lobe samples and the region loops). With 64 steps and 128 bits, 56 VPLs a draw.
     const int wordsPerTest = m_voxelBits / 32;
     const int rayIterations = 1 + m_raySteps * (1 + 2 * wordsPerTest);
-    return std::max(1, gl::kShaderLoopIterationBudget / 2 / rayIterations);
+    return std::max(1, gl::shaderLoopIterationBudget() / 2 / rayIterations);
 }
 
 void AreaLightTechnique::bindVoxels() {

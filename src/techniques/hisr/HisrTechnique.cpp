@@ -37,7 +37,7 @@ void HisrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("tau", m_tau, "Eq. 4.8 refinement threshold on the normalised contribution bound (assumption)", 1e-6f, 0.999f);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
-    v.field("gatherPass", m_gatherPass, nichols::kGatherPassHelp, nichols::kGatherPasses);
+    v.field("gatherPass", m_gatherPass, nichols::kGatherPassHelp, nichols::kGatherPasses, nichols::kGatherPassDefaults);
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2)");
@@ -73,11 +73,11 @@ Expected<void> HisrTechnique::setup(const SetupContext& ctx) {
     int rootLevel = 0;
     for (int side = m_rsmSize; side > m_rootGrid; side /= 2) ++rootLevel;
     const int walk = rootWalkIterations(std::min(m_maxDepth, rootLevel));
-    if (walk + 1 > gl::kShaderLoopIterationBudget)
+    if (walk + 1 > gl::shaderLoopIterationBudget())
         return makeError("maxDepth={}{}: one root's walk may take {} loop iterations, past the shader loop budget of {}; "
                          "lower maxDepth{}",
                          m_maxDepth, m_visibility->enabled() ? " with vplVisibility" : "", walk,
-                         gl::kShaderLoopIterationBudget, m_visibility->enabled() ? ", voxelColumns or voxelBits" : "");
+                         gl::shaderLoopIterationBudget(), m_visibility->enabled() ? ", voxelColumns or voxelBits" : "");
     // gatherPass: the stencilled draw (the thesis's) or the compute dispatch over the cell list (same sums).
     if (nichols::gatherPass(m_gatherPass) == nichols::GatherPass::Compute) {
         BOUNCE_TRY(m_gather, gl::Program::build({"hisr.gather", {{GL_COMPUTE_SHADER, "techniques/hisr/gather.comp"}}, m_visibility->defines()}));
@@ -141,7 +141,7 @@ void HisrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirec
         // walked whole on llvmpipe too.
         const int rootLevel = m_light->levels() - 1;
         const int rootsPerDraw =
-            std::max(1, gl::kShaderLoopIterationBudget / (rootWalkIterations(std::min(m_maxDepth, rootLevel)) + 1));
+            std::max(1, gl::shaderLoopIterationBudget() / (rootWalkIterations(std::min(m_maxDepth, rootLevel)) + 1));
         const glm::ivec2 roots = m_light->levelSize(rootLevel);
         const int rootCount = roots.x * roots.y * m_light->layers();
         const int batches = (rootCount + rootsPerDraw - 1) / rootsPerDraw;

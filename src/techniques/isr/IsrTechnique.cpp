@@ -51,7 +51,7 @@ void IsrTechnique::visitSettings(SettingsVisitor& v) {
     v.field("lightFinest", m_lightFinest, "clusters: finest light-space patch grid (assumption 64; up to rsmSize)", 1, 2048);
     v.field("eyeCoarsest", m_eyeCoarsest, "coarsest illumination-buffer level (thesis 16)", 1, 4096);
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
-    v.field("gatherPass", m_gatherPass, nichols::kGatherPassHelp, nichols::kGatherPasses);
+    v.field("gatherPass", m_gatherPass, nichols::kGatherPassHelp, nichols::kGatherPasses, nichols::kGatherPassDefaults);
     v.field("depthThreshold", m_eyeThresholds.depth, "eye-space max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
     v.field("normalThreshold", m_eyeThresholds.normal, "eye-space normal component range, 0..2 (assumption)", 0.0f, 2.0f);
     v.field("edgeNeighbours", m_eyeThresholds.edgeNeighbours, "also test edge-adjacent cells (§3.4.2: not adopted, up to 40 % slower)");
@@ -150,7 +150,7 @@ void IsrTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
         // loop budget (gpu/ShaderLimits.h), so a million-VPL cache is gathered whole on llvmpipe too.
         // The VPLs are read through a uniform-block window (nichols/VplWindow.h), at most one window a draw.
         const int vplsPerDraw =
-            nichols::VplWindow::perDraw(gl::kShaderLoopIterationBudget / 2 / (1 + m_visibility->loopIterationsPerTest()));
+            nichols::VplWindow::perDraw(gl::shaderLoopIterationBudget() / 2 / (1 + m_visibility->loopIterationsPerTest()));
         const int batches = std::max(1, (vplBound + vplsPerDraw - 1) / vplsPerDraw);
         m_eye->gather(m_gather, batches, [&](int b) {
             m_gather.set("u_vplFirst", static_cast<unsigned>(b * vplsPerDraw));

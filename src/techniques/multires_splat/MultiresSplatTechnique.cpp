@@ -50,6 +50,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/DispatchGrid.h"
 #include "techniques/nichols/VplWindow.h"
 
 #include <fmt/format.h>
@@ -92,8 +93,9 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
     static constexpr std::string_view kRefinePasses[] = {"compute", "geometry"};
     v.field("refinePass", m_refinePass,
             "how each refinement pass runs: compute (an atomic-append dispatch per pass, indirect draws; bounce's default) "
-            "or geometry (the thesis's geometry shader with transform feedback); same subsplats, same image",
-            kRefinePasses);
+            "or geometry (the thesis's geometry shader with transform feedback); same subsplats, same image. Per device profile: "
+            "compute on llvmpipe (which runs geometry shaders and transform feedback on one thread), geometry on a GPU",
+            kRefinePasses, PerProfile<std::string_view>{"compute", "geometry"});
     v.field("upsampling", m_upsampling, nichols::kUpsampleFilterHelp, nichols::kUpsampleFilters);
     v.field("formFactor", m_formFactor,
             "disk: Eq. 4.1's disk-to-point form factor, as the rsm gather (bounce's default; the VPL's patch area bounds the "
@@ -283,6 +285,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                 refine.set("u_firstVpl", first);
                 refine.set("u_regionStride", static_cast<unsigned>(perList));
                 refine.set("u_regions", n);
+                refine.set("u_maxGroupsX", gl::maxGroupsX());
                 m_control.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
                 glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_control.id());
                 // One pass per level (16^2 -> full resolution); the first generates the coarsest cells
@@ -301,7 +304,8 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                     refine.set("u_src", current);
                     refine.use();
                     if (pass == 0) {
-                        glDispatchCompute(static_cast<GLuint>((top.x * top.y + 63) / 64), static_cast<GLuint>(n), 1);
+                        const gl::GroupGrid g = gl::groupGrid((static_cast<uint64_t>(top.x) * top.y + 63) / 64, gl::maxGroupsX());
+                        glDispatchCompute(g.x, static_cast<GLuint>(n), g.y);
                     } else {
                         glDispatchComputeIndirect(static_cast<GLintptr>(current * sizeof(glm::uvec4)));
                     }

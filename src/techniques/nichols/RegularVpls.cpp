@@ -28,14 +28,14 @@ Expected<void> RegularVpls::checkGrid(int rsmSize, int grid, int layers) {
                                            fmt::format("the VPL cache of {} VPLs ({} RSM layers)", records, layers)));
     // The extraction loops over a block's texels (and once per block row): block^2 + block iterations.
     const int block = rsmSize / grid;
-    if (block * block + block > gl::kShaderLoopIterationBudget) {
+    if (block * block + block > gl::shaderLoopIterationBudget()) {
         int smallest = grid;
-        while (rsmSize / smallest * (rsmSize / smallest) + rsmSize / smallest > gl::kShaderLoopIterationBudget ||
+        while (rsmSize / smallest * (rsmSize / smallest) + rsmSize / smallest > gl::shaderLoopIterationBudget() ||
                rsmSize % smallest != 0)
             ++smallest;
         return makeError("setting vplGrid={} with rsmSize={}: blocks of {}x{} RSM texels per VPL exceed the shader loop "
                          "budget of {} iterations; use vplGrid >= {}",
-                         grid, rsmSize, block, block, gl::kShaderLoopIterationBudget, smallest);
+                         grid, rsmSize, block, block, gl::shaderLoopIterationBudget(), smallest);
     }
     return {};
 }

@@ -3,6 +3,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/DispatchGrid.h"
 
 #include <fmt/format.h>
 
@@ -25,7 +26,7 @@ GatherPass gatherPass(std::string_view name) {
 int StencilledGather::s_maxGroupsXForTests = 0;
 
 int StencilledGather::maxGroupsX() {
-    const int device = gl::Context::current()->info().maxComputeWorkGroupCount[0];
+    const int device = static_cast<int>(gl::maxGroupsX());  // the device's, or gl::setMaxGroupsXForTests
     return s_maxGroupsXForTests > 0 ? std::min(s_maxGroupsXForTests, device) : device;
 }
 

@@ -5,6 +5,7 @@
 // stencilled per-level draw of a technique's gather program, and the coarse-to-fine upsampling into
 // the indirect target. The techniques differ only in what their gather program reads (a VPL cache or
 // a VPL tree), which they bind before gather().
+#include "core/DeviceProfile.h"
 #include "techniques/nichols/MultiresBuffer.h"
 
 #include <optional>
@@ -20,7 +21,10 @@ enum class GatherPass { Stencil = 0, Compute = 1 };
 inline constexpr std::string_view kGatherPasses[] = {"stencil", "compute"};
 inline constexpr const char* kGatherPassHelp =
     "stencil: the thesis's stencil set-up and stencilled draws (§4.2.1.1); compute: the same cells listed and "
-    "gathered by a compute dispatch over the list (faster on llvmpipe, same image)";
+    "gathered by a compute dispatch over the list (faster on llvmpipe, same image; the llvmpipe profile's default)";
+// The default per device profile (issue 29 #20): compute on llvmpipe (its speed is the only reason for
+// it), the thesis's stencil on a GPU. A technique's member starts at the llvmpipe value.
+inline constexpr PerProfile<std::string_view> kGatherPassDefaults{"compute", "stencil"};
 GatherPass gatherPass(std::string_view name);
 
 class StencilledGather {

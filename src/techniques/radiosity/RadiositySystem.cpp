@@ -4,6 +4,7 @@
 #include "core/Image.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/DispatchGrid.h"
 #include "techniques/radiosity/HemicubeMath.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -317,7 +318,7 @@ void RadiositySystem::reset(int receivers, bool toEmission) {
     m_clear.set("u_mode", toEmission ? 1 : 2);
     m_clear.set("u_receivers", receivers);
     m_clear.set("u_count", static_cast<unsigned>(m_model.elements().size()));
-    gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
+    gl::dispatchLinear(m_model.elements().size(), 64);
     barrier();
 }
 
@@ -331,7 +332,7 @@ void RadiositySystem::computeLights(const render::LightSet& lights) {
     for (size_t k = 0; k < m_punctual.size(); ++k) {
         lights.bind(m_punctual[k]);  // its uniforms and shadow maps at BINDING_UBO_LIGHT / _TEX_SHADOW(_CUBE)
         m_lightPass.set("u_accumulate", k == 0 ? 0 : 1);
-        gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
+        gl::dispatchLinear(m_model.elements().size(), 64);
         barrier();
     }
 }
@@ -344,7 +345,7 @@ void RadiositySystem::applyLights(int receivers) {
     m_lightPass.set("u_mode", 1);
     m_lightPass.set("u_receivers", receivers);
     m_lightPass.set("u_count", static_cast<unsigned>(m_model.elements().size()));
-    gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
+    gl::dispatchLinear(m_model.elements().size(), 64);
     barrier();
 }
 
@@ -359,7 +360,7 @@ void RadiositySystem::placeRecords(int mode, uint32_t first, uint32_t count, uin
     m_place.set("u_offset", m_offset);
     m_place.set("u_near", 0.5f * m_offset);
     m_place.set("u_rotate", m_options.randomRotation ? 1 : 0);
-    gl::Program::dispatch(static_cast<int>(count), 1, 1, 64);
+    gl::dispatchLinear(count, 64);
     barrier();
 }
 
@@ -431,7 +432,7 @@ void RadiositySystem::renderHemicubes(render::SceneDrawer& drawer, HemicubeKind 
         m_resolve.set("u_samples", m_options.msaa);
         m_resolve.set("u_resolution", size);
         m_resolve.set("u_count", 5 * count);
-        gl::Program::dispatch(static_cast<int>(size * size * 5 * count), 1, 1, 64);
+        gl::dispatchLinear(size * size * 5 * count, 64);
         barrier();
     }
 }
@@ -459,7 +460,7 @@ void RadiositySystem::gatherSweep(render::SceneDrawer& drawer, gl::GpuTimers& ti
             m_ffMultiply.set("u_samples", m_options.msaa);
             m_ffMultiply.set("u_resolution", R);
             m_ffMultiply.set("u_count", 5 * count);
-            gl::Program::dispatch(R * R * 5 * static_cast<int>(count), 1, 1, 256);
+            gl::dispatchLinear(R * R * 5 * count, 256);
             barrier();
             m_weighted.generateMipmaps();
             m_integrateMip.use();
@@ -500,7 +501,8 @@ std::vector<QuadStats> RadiositySystem::quadStats() {
     bindCommon();
     m_quadStats.use();
     m_quadStats.set("u_first", 0u);
-    glDispatchCompute(static_cast<GLuint>(n), 1, 1);
+    m_quadStats.set("u_count", static_cast<unsigned>(n));
+    gl::dispatchGroupsLinear(n);  // one group per quad: a mesh scene's quads can pass 65,535
     barrier();
     std::vector<glm::vec4> raw(3 * n);
     m_stats.download(0, raw.size() * sizeof(glm::vec4), raw.data());  // the thesis's readback stall
@@ -569,7 +571,7 @@ void RadiositySystem::reconstruct(int mode, int receivers, uint32_t first, uint3
     m_backOld.bind(BINDING_TEX_TECH2);
     m_backNew.bind(BINDING_TEX_TECH3);
     m_reconstruct.use();
-    gl::Program::dispatch(static_cast<int>(m_model.elements().size()), 1, 1, 64);
+    gl::dispatchLinear(m_model.elements().size(), 64);
     barrier();
 }
 

@@ -40,11 +40,11 @@ Expected<VplVisibility> VplVisibility::create(const VplVisibilitySettings& setti
     if (!settings.enabled) return v;
     BOUNCE_TRY_VOID(checkGrid(GridSize{glm::ivec2(settings.columns), settings.bits}, "voxelColumns", "voxelBits"));
     // The gathers batch VPLs down to one per draw; one test must fit the shader loop budget by itself.
-    if (v.loopIterationsPerTest() + 1 > gl::kShaderLoopIterationBudget)
+    if (v.loopIterationsPerTest() + 1 > gl::shaderLoopIterationBudget())
         return makeError("voxelColumns={} voxelBits={} rayMarch={} raySteps={}: one visibility test may take {} loop "
                          "iterations, past the shader loop budget of {}",
                          settings.columns, settings.bits, settings.march, settings.steps, v.loopIterationsPerTest(),
-                         gl::kShaderLoopIterationBudget);
+                         gl::shaderLoopIterationBudget());
     BOUNCE_TRY(v.m_voxels, ScreenVoxels::create());
     v.m_rays = gl::Buffer::create("vplVisibility.rays", 4 * sizeof(uint32_t));
     return v;

@@ -47,6 +47,8 @@
 #include "core/Log.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/SetupLimits.h"
+#include "gpu/ShaderLimits.h"
 #include "techniques/vct/ConeSet.h"
 #include "techniques/vct/RadianceRange.h"
 #include "techniques/vct/ShMath.h"
@@ -70,6 +72,13 @@ constexpr float kRangeHeadroom = 1.25f;
 // Active-voxel list capacity per level, in multiples of N_l^2: a surface occupies O(N^2) voxels; 32
 // covers six thick walls and interior geometry several times over (engineering choice).
 constexpr uint32_t kListCapacityPerSquare = 32;
+// resolution's default per device profile (issue 29 #20): the thesis's 256^3 for its GI figures on a
+// GPU (Rauwendaal 2013 ch. 6); 64^3 on llvmpipe, which voxelizes and traces on the CPU.
+constexpr int kResolutionLlvmpipe = 64;
+constexpr int kResolutionGpu = 256;
+// vct.counters: [0..3] writes, pass-1 and pass-2 triangles, CAS drops; [4..7] pass 2's indirect
+// command; [8] oversized triangles (volume.glsl's VctCounters).
+constexpr int kCounters = 12;
 // SH-U8 coefficient range relative to the radiance range: the DC coefficient of radiance L is
 // L / Y00 = 3.545 L, band 1 is bounded by the same (|Y1| <= |Y00| sqrt(3)).
 constexpr float kShU8RangeFactor = 3.6f;
@@ -95,11 +104,14 @@ struct ListHead {
 
 void VctTechnique::visitSettings(SettingsVisitor& v) {
     v.field("voxelizer", m_voxelizer, "hybrid: small triangles in the geometry shader, large ones by an indirect fragment-parallel pass (thesis 4.1.3); triangle: triangle-parallel (4.1.1); fragment: fragment-parallel (4.1.2)", kVoxelizers);
-    v.field("resolution", m_resolution, "voxels per side N (power of two; thesis 128..512, 256 for its GI figures; 64 here for llvmpipe)", 16, 512);
+    v.field("resolution", m_resolution, "voxels per side N (power of two; thesis 128..512, 256 for its GI figures; 64 on llvmpipe, where 256 takes minutes a frame)", 16, 512,
+            PerProfile<int>{kResolutionLlvmpipe, kResolutionGpu});
     v.field("separability", m_separability, "conservative: 26-separating overlap (Fig. 4.4); thin: 6-separating (Fig. 4.5, the Table 4.1 benchmark)", kSeparabilities);
     v.field("cutoff", m_cutoff, "hybrid classification: projected triangle area on its dominant plane, voxels^2, above which a triangle goes to pass 2 (thesis: 'a few', optimum 0.5..13.7 in Table 4.1)", 0.0f, 1.0e6f);
     v.field("storage", m_storage, "radiance storage: iso RGBA8 (5.1.1), aniso 6 x RGBA8 (5.1.2; the default, closest to the reference), sh-f32 12 x R32F with float atomics, sh-u8 3 x RGBA8 transferred from iso (5.1.3)", kStorages);
     v.field("atomic", m_atomic, "level-0 write conflicts: average = compare-and-swap running average (Fig. B.1), max = imageAtomicMax", kAtomics);
+    v.field("casRetries", m_casRetries, "compare-and-swap retries of a level-0 write (atomic=average, and sh-f32 without float atomics) before it is dropped and counted in casDrops (Fig. B.1 bounds the loop; 255, the count's saturation)", 1, 4096);
+    v.field("triangleInvocations", m_triangleInvocations, "voxelizer=triangle: geometry-shader invocations per triangle, each looping over every k-th row of its voxel box (bounce's; one invocation, the thesis's, loops over the whole box: about 10^6 iterations at N=512, past a GPU watchdog and llvmpipe's loop budget; GL guarantees 32)", 1, 32);
     v.field("sparseMip", m_sparseMip, "post-voxelization and mipmapping over active-voxel lists (thesis 5.4); off = every voxel (dense)");
     v.field("binary", m_binary, "occupancy only (single-component volume, Table 4.1 benchmark mode): no radiance, the indirect output is black unless a debug view shows the occupancy");
     v.field("tracer", m_tracer, "diffuse cones: the generic tracer (Fig. B.4, with the tangent cap; the default, closest to the reference) or the specialised 60-degree tracer at integer LODs (Fig. B.5, as printed)", kTracers);
@@ -142,7 +154,8 @@ Expected<void> VctTechnique::buildPrograms() {
     const std::string conservative = m_separability == "conservative" ? "1" : "0";
     std::vector<std::pair<std::string, std::string>> defines = {{"VCT_STORAGE", std::to_string(storage)},
                                                                 {"VCT_CONSERVATIVE", conservative},
-                                                                {"VCT_FLOAT_ATOMICS", m_floatAtomics ? "1" : "0"}};
+                                                                {"VCT_FLOAT_ATOMICS", m_floatAtomics ? "1" : "0"},
+                                                                {"VCT_CAS_RETRIES", std::to_string(m_casRetries)}};
     auto with = [&](std::vector<std::pair<std::string, std::string>> extra) {
         auto d = defines;
         d.insert(d.end(), extra.begin(), extra.end());
@@ -150,7 +163,7 @@ Expected<void> VctTechnique::buildPrograms() {
     };
     const std::string geomTri = "techniques/vct/voxelize_triangle.geom";
     if (m_voxelizer == "triangle") {
-        BOUNCE_TRY(m_voxTriangle, gl::Program::build({"vct.voxelize.triangle", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, geomTri}}, with({{"VCT_HYBRID", "0"}})}));
+        BOUNCE_TRY(m_voxTriangle, gl::Program::build({"vct.voxelize.triangle", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, geomTri}}, with({{"VCT_HYBRID", "0"}, {"VCT_INVOCATIONS", std::to_string(m_triangleInvocations)}})}));
     }
     if (m_voxelizer == "hybrid") {
         BOUNCE_TRY(m_voxHybrid, gl::Program::build({"vct.voxelize.hybrid1", {{GL_VERTEX_SHADER, "techniques/vct/voxelize.vert"}, {GL_GEOMETRY_SHADER, geomTri}}, with({{"VCT_HYBRID", "1"}})}));
@@ -200,6 +213,21 @@ Expected<void> VctTechnique::buildPrograms() {
         BOUNCE_TRY(m_directCone, gl::Program::build({"vct.direct.cone", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "techniques/vct/direct_cone.frag"}}, defines}));
     }
     return {};
+}
+
+// The active list of level l (sizeof(ListHead) + capacity words; allocate() below).
+static uint64_t activeListCapacity(int resolution, int level) {
+    const uint64_t n = static_cast<uint64_t>(resolution >> level);
+    return std::min<uint64_t>(n * n * n, kListCapacityPerSquare * n * n);
+}
+
+Expected<void> VctTechnique::checkBuffers(const gl::GpuInfo& info, int resolution, size_t triangles) {
+    const size_t large = std::max<size_t>(triangles, 1) * 3 * 2 * sizeof(uint32_t);
+    BOUNCE_TRY_VOID(gl::checkStorageBuffer(info, large, fmt::format("technique 'vct': the scene's {} triangles", triangles),
+                                           "the large-triangle list (6 words a triangle)"));
+    const size_t list = sizeof(ListHead) + activeListCapacity(resolution, 0) * sizeof(uint32_t);
+    return gl::checkStorageBuffer(info, list, fmt::format("technique 'vct': setting resolution={}", resolution),
+                                  fmt::format("the level-0 active list ({} voxels)", activeListCapacity(resolution, 0)));
 }
 
 Expected<void> VctTechnique::setup(const SetupContext& ctx) {
@@ -257,6 +285,7 @@ Expected<void> VctTechnique::setup(const SetupContext& ctx) {
     m_uniforms.grid = glm::vec4(static_cast<float>(N), 1.0f / static_cast<float>(N), voxel, static_cast<float>(m_levels));
     m_sceneGpu = &ctx.sceneGpu;
 
+    BOUNCE_TRY_VOID(checkBuffers(info, N, ctx.sceneGpu.triangleCount(render::DrawFilter::All)));
     BOUNCE_TRY_VOID(buildPrograms());
     BOUNCE_TRY_VOID(allocate(ctx));
 
@@ -304,15 +333,14 @@ Expected<void> VctTechnique::allocate(const SetupContext&) {
         }
     }
     m_ubo = gl::Buffer::create("vct.uniforms", sizeof(gpu::VctUniforms));
-    m_counters = gl::Buffer::create("vct.counters", 8 * sizeof(uint32_t));
+    m_counters = gl::Buffer::create("vct.counters", kCounters * sizeof(uint32_t));
     size_t triangles = m_sceneGpu->triangleCount(render::DrawFilter::All);
     m_largeCapacity = static_cast<uint32_t>(std::max<size_t>(triangles, 1));
     m_large = gl::Buffer::create("vct.largeTriangles", static_cast<size_t>(m_largeCapacity) * 3 * 2 * sizeof(uint32_t));
     m_lists.clear();
     for (int l = 0; l < m_levels; ++l) {
-        const uint64_t n = static_cast<uint64_t>(N >> l);
         ActiveList list;
-        list.capacity = static_cast<uint32_t>(std::min<uint64_t>(n * n * n, kListCapacityPerSquare * n * n));
+        list.capacity = static_cast<uint32_t>(activeListCapacity(N, l));
         list.buffer = gl::Buffer::create(fmt::format("vct.activeList{}", l), sizeof(ListHead) + list.capacity * sizeof(uint32_t));
         m_lists.push_back(std::move(list));
     }
@@ -399,7 +427,7 @@ void VctTechnique::clearVolumes() {
     }
     // The SH-F32 write counts (one level) are cleared densely in both paths.
     if (storage == VCT_STORAGE_SH_F32 && !m_binary) glClearTexImage(m_count.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    const uint32_t counters[8] = {0, 0, 0, 0, 0, 1, 0, 0};  // [4..7]: pass 2's DrawArraysIndirectCommand
+    const uint32_t counters[kCounters] = {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0};  // [4..7]: pass 2's DrawArraysIndirectCommand
     m_counters.upload(0, sizeof(counters), counters);
 }
 
@@ -474,8 +502,10 @@ void VctTechnique::voxelize(FrameContext& ctx) {
         if (m_voxelizer == "hybrid") {
             m_large.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
             m_voxHybrid.set("u_largeCapacity", m_largeCapacity);
+            m_voxHybrid.set("u_loopBudget", static_cast<unsigned>(gl::shaderLoopIterationBudget()));
             m_voxHybrid.use();
         } else {
+            m_voxTriangle.set("u_loopBudget", static_cast<unsigned>(gl::shaderLoopIterationBudget()));
             m_voxTriangle.use();
         }
         ctx.drawer.draw(view);
@@ -674,11 +704,22 @@ void VctTechnique::collectCounters(Counters& out) {
     // Counters (one small readback per frame, after the frame is queued: the thesis reports the same
     // counts).
     const bool sparse = m_frameSparse;
-    uint32_t c[8];
+    uint32_t c[kCounters];
     m_counters.download(0, sizeof(c), c);
     out["voxelWrites"] = c[0];
     out["trianglesPass1"] = c[1];
     out["trianglesPass2"] = c[2];
+    out["casDrops"] = c[3];  // level-0 writes whose compare-and-swap loop gave up (volume.glsl)
+    // Triangles whose voxel box may pass the loop budget in one geometry-shader invocation
+    // (voxelize_triangle.geom): on llvmpipe their loops end early, on a GPU the watchdog may fire.
+    out["oversizedTriangles"] = c[8];
+    if (c[8] > 0 && !m_warnedOversized) {
+        m_warnedOversized = true;
+        spdlog::warn("vct: {} triangles' voxel boxes may take more than the shader loop budget of {} iterations in one "
+                     "geometry-shader invocation (resolution={}, triangleInvocations={}): raise triangleInvocations or use "
+                     "voxelizer=hybrid",
+                     c[8], gl::shaderLoopIterationBudget(), m_resolution, m_triangleInvocations);
+    }
     out["resolution"] = m_resolution;
     out["radianceRange"] = m_uniforms.range.x;
     out["bytesPerVoxel"] = allocatedRadianceBytesPerVoxel();

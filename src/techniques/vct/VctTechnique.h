@@ -1,6 +1,7 @@
 #pragma once
 // `vct`: voxel cone tracing with hybrid voxelization and spherical-harmonics radiance (Rauwendaal
 // 2013). See VctTechnique.cpp for the passes and docs/techniques/vct.md for settings and deviations.
+#include "gpu/GpuInfo.h"
 #include "techniques/Technique.h"
 #include "techniques/vct/RadianceRange.h"
 #include "techniques/vct/vct_shared.h"
@@ -51,6 +52,10 @@ public:
     glm::mat4 voxelFromWorld() const { return m_uniforms.voxelFromWorld; }
     // Bytes per level-0 voxel of the radiance storage alone (R8), the thesis's figures per format.
     static double radianceBytesPerVoxel(std::string_view storage);
+    // Refuses, in one line, a storage buffer past `info`'s GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the
+    // large-triangle list (6 words per scene triangle) and the active lists (level 0 holds up to
+    // 32 N^2 voxels) at `resolution` (issue 29 #6; setup passes the context's limits).
+    static Expected<void> checkBuffers(const gl::GpuInfo& info, int resolution, size_t triangles);
     // Bytes per level-0 voxel of the radiance volumes and of the opacity volume as allocated: the
     // level-0 texel sizes GL reports for the textures this frame uses (the R8 counters).
     double allocatedRadianceBytesPerVoxel() const;
@@ -85,6 +90,12 @@ private:
     float m_cutoff = 3.0f;
     std::string m_storage{"aniso"};
     std::string m_atomic{"average"};
+    int m_casRetries = 255;
+    // voxelizer=triangle: 8 geometry-shader invocations a triangle (GL guarantees 32). The thesis's one
+    // invocation loops over a triangle's whole box: on llvmpipe it lost 25 % of cornell-box's voxel
+    // writes at N=64 (20,987 of 27,918; 4, 8 and 32 invocations all write 27,918, as the hybrid does),
+    // and at N=512 a floor's box is ~10^6 iterations on a GPU (watchdog; issue 29 #10).
+    int m_triangleInvocations = 8;
     bool m_sparseMip = true;
     bool m_binary = false;
     std::string m_tracer{"generic"};
@@ -113,6 +124,7 @@ private:
     bool m_floatAtomics = true;   // GL_NV_shader_atomic_float present (else SH-F32 adds by CAS loops)
     bool m_sparseActive = false;  // sparse path on (off after an overflow of a list)
     bool m_frameSparse = false;   // this frame mipmapped sparsely (collectCounters reads its lists)
+    bool m_warnedOversized = false;  // the oversizedTriangles warning is given once
     bool m_listsValid = false;    // the lists hold every voxel the last frame wrote (sparse clear possible)
     gpu::VctUniforms m_uniforms{};
     gl::Buffer m_ubo, m_counters, m_large;
