@@ -55,7 +55,8 @@ vec3 shadowCascadeUvz(LightGpu L, vec4 k, vec3 x) {
 //   plane through x with normal n, projected into the map, gives dz/duv; slope-scaled bias computed
 //   from the normal, so a planar receiver never shadows itself at any kernel radius), less that
 //   slope over one texel for the bilinear compare's 2 x 2 footprint; slopes past kMaxReceiverSlope
-//   (grazing, where cos(theta) leaves almost no light) are clamped.
+//   (grazing, where cos(theta) leaves almost no light) are clamped. Directional lights only: spot
+//   lights keep the map's polygon offset (render/LightSet.cpp says why).
 const float kMaxReceiverSlope = 10.0;  // tan(84 degrees): depth per lateral distance, bounce's choice
 float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCube, vec3 x, vec3 n) {
     int kind = int(L.edgeU.w + 0.5);
@@ -97,7 +98,8 @@ float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCub
     float zPerTexel = abs(shadowCascadeUvz(L, k, p + toLight * texelWorld).z - uvz.z);  // depth of one texel's distance
     float maxSlope = kMaxReceiverSlope * zPerTexel / texel;
     vec2 slope = abs(det) > 1e-20 ? vec2(a.z * b.y - b.z * a.y, b.z * a.x - a.z * b.x) / det : vec2(0.0);
-    slope = clamp(slope, vec2(-maxSlope), vec2(maxSlope));
+    // Directional maps only: spot maps keep the polygon offset (render/LightSet.cpp).
+    slope = directional ? clamp(slope, vec2(-maxSlope), vec2(maxSlope)) : vec2(0.0);
     float footprint = (abs(slope.x) + abs(slope.y)) * texel;
     // The cascade's tile in the atlas (2 x 2 with cascades, render/ShadowCascades.h); taps stay inside it.
     float tiles = count > 1 ? 2.0 : 1.0;

@@ -19,8 +19,8 @@ constexpr float kMaxPerspectiveSpotAngle = glm::radians(80.0f);
 // geometry next to the light, large enough to keep 32-bit float depth precise.
 constexpr float kNearFraction = 1e-3f;
 
-// glPolygonOffset of cube maps' depth pass (the values before issue 30): the depth slope's factor and
-// depth-resolution units. 2D maps have none (the receiver-plane bias replaces it, see update()).
+// glPolygonOffset of shadow maps (the values before issue 30): the depth slope's factor (not for
+// directional maps since issue 30: theirs is the receiver-plane bias, see update()) and depth units.
 constexpr float kSlopeBias = 1.5f, kConstantBias = 2.0f;
 
 // LightGpu::edgeU.w: which shadow map a light has (matches common/lighting.glsl).
@@ -220,14 +220,14 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings, const
             glDepthFunc(GL_LESS);
             glDisable(GL_BLEND);
             glDisable(GL_CULL_FACE);
-            // 2D maps store true depths: their slope-scaled bias is the receiver plane's, in the shader
-            // (common/lighting.glsl), and a polygon offset on top only lifts occluders off their contacts
-            // (measured on courtyard: relMSE 0.0037 with the offset below, 0.0021 without; docs/rendering.md).
-            // Cube maps keep it for their z-test (their stored distance does not see it).
-            if (cube) {
-                glEnable(GL_POLYGON_OFFSET_FILL);
-                glPolygonOffset(kSlopeBias, kConstantBias);
-            }
+            // Directional maps' slope-scaled bias is the receiver plane's, in the shader
+            // (common/lighting.glsl): a slope factor on top only lifts occluders off their contacts (light
+            // leaks under courtyard's arches; docs/rendering.md), so they keep the constant units alone
+            // (depth quantization where the receiver plane's slope is 0). Spot maps keep both (their
+            // shadows were right before issue 30: cornell-box lost 0.2 % of its light with the receiver
+            // plane, at the box's concave corners), cube maps too, for their z-test.
+            glEnable(GL_POLYGON_OFFSET_FILL);
+            glPolygonOffset(light.type == LightType::Directional ? 0.0f : kSlopeBias, kConstantBias);
             if (cube) {
                 m_distanceProgram.use();
                 for (int face = 0; face < 6; ++face) {
