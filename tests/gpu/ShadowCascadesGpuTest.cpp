@@ -11,10 +11,14 @@
 #include "metrics/NoiseFloor.h"
 #include "reference/PathTracer.h"
 #include "render/RenderSettings.h"
+#include "render/ShadowCascades.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 #include "scene/SceneLoader.h"
 #include "techniques/Pipeline.h"
 #include "techniques/Registry.h"
 
+#include <cmath>
 #include <cstdio>
 
 using namespace bounce;
@@ -109,4 +113,39 @@ TEST_F(ShadowCascadesGpuTest, CascadesAreFinerThanTheWholeSceneMap) {
     // Measured 0.0025 against 0.0065 (0.38 of it): at most 0.6 of it leaves room for the reference's
     // noise (floor 0.00086 on both) and fails a fit that gains less than 40 %.
     EXPECT_LT(fitted, 0.6 * single);
+}
+
+// The fit itself (no GL): finer cascades first, whole texels, and the texel size of the sphere-fitted
+// cascades unchanged when the camera turns (what keeps shadow edges from shimmering).
+TEST(ShadowCascadesFit, FinerFirstSnappedAndStableUnderRotation) {
+    auto scene = loadScene("courtyard", {{"triangles", kTriangles}});
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    glm::vec3 lo, hi;
+    scene->bounds(0.0f, lo, hi);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float radius = 0.5f * glm::length(hi - lo);
+    const glm::vec3 d = glm::normalize(scene->lights[0].direction);
+    const glm::mat4 base = glm::ortho(-radius, radius, -radius, radius, radius, 3.0f * radius) *
+                           glm::lookAt(centre - 2.0f * radius * d, centre, glm::vec3(0.0f, 1.0f, 0.0f));
+    constexpr int kTile = 1024;
+    const render::View view = render::cameraView(scene->camera, {kSize, kSize});
+    const render::ShadowCascades fit = render::fitShadowCascades(base, radius, view, lo, hi, 3, kTile);
+    ASSERT_GE(fit.count, 3);  // at least two view cascades before the whole-scene map on courtyard
+    EXPECT_EQ(fit.cascades[fit.count - 1], glm::vec4(0.0f, 0.0f, 1.0f, 2.0f * radius / kTile));
+    for (int c = 0; c + 1 < fit.count; ++c) {
+        EXPECT_LT(fit.cascades[c].w, fit.cascades[c + 1].w) << c;  // texel sizes grow with distance
+        const double texelUv = 1.0 / (fit.cascades[c].z * kTile);
+        for (int axis = 0; axis < 2; ++axis) {  // origins on whole texels of the cascade
+            const double t = fit.cascades[c][axis] / texelUv;
+            EXPECT_NEAR(t, std::round(t), 1e-2) << c;
+        }
+    }
+    // Turn the camera by 2 degrees about the vertical: the first (sphere-fitted) cascade keeps its texel.
+    Camera turned = scene->camera;
+    const glm::vec3 forward = turned.target - turned.position;
+    turned.target = turned.position + glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(2.0f), glm::vec3(0, 1, 0)) *
+                                                glm::vec4(forward, 0.0f));
+    const render::ShadowCascades again =
+        render::fitShadowCascades(base, radius, render::cameraView(turned, {kSize, kSize}), lo, hi, 3, kTile);
+    EXPECT_EQ(again.cascades[0].w, fit.cascades[0].w);
 }
