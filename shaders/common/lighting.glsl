@@ -38,26 +38,80 @@ vec3 punctualIrradiance(LightGpu L, vec3 x, out vec3 l) {
     return intensity / r2;
 }
 
+// x's position in cascade k of L's 2D map: (cascade uv, depth).
+vec3 shadowCascadeUvz(LightGpu L, vec4 k, vec3 x) {
+    vec4 clip = L.shadowClipFromWorld * vec4(x, 1.0);
+    vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
+    return vec3((uvz.xy - k.xy) * k.z, uvz.z);
+}
+
 // Visibility of light L from x (normal n) through the given maps (a pass that samples several
-// lights at once binds each light's maps to its own units).
+// lights at once binds each light's maps to its own units). 2D maps (docs/rendering.md "Shadows"):
+// - the first cascade whose tile holds x's PCF kernel (finest first; the last, the whole scene, holds
+//   every point of the scene);
+// - looked up from x offset along n by the constant shadowBias plus shadowOrigin.w texels of that
+//   cascade times sin(incidence) (the normal offset, scaled by the texel's world size);
+// - each tap compared at the receiver's own plane's depth there (receiver-plane depth bias: the
+//   plane through x with normal n, projected into the map, gives dz/duv; slope-scaled bias computed
+//   from the normal, so a planar receiver never shadows itself at any kernel radius), less that
+//   slope over one texel for the bilinear compare's 2 x 2 footprint; slopes past kMaxReceiverSlope
+//   (grazing, where cos(theta) leaves almost no light) are clamped. Directional lights only: spot
+//   lights keep the map's polygon offset (render/LightSet.cpp says why).
+const float kMaxReceiverSlope = 10.0;  // tan(84 degrees): depth per lateral distance, bounce's choice
 float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCube, vec3 x, vec3 n) {
     int kind = int(L.edgeU.w + 0.5);
     if (kind == 0) return 1.0;
-    vec3 p = x + n * L.edgeV.w;  // normal-offset bias (metres)
     if (kind == 2) {
+        vec3 p = x + n * L.edgeV.w;  // normal-offset bias (metres)
         vec3 d = p - L.shadowOrigin.xyz;
         float stored = texture(mapCube, d).r * L.shadowParams.x;
         return length(d) <= stored ? 1.0 : 0.0;
     }
-    vec4 c = L.shadowClipFromWorld * vec4(p, 1.0);
-    vec3 ndc = c.xyz / c.w;
-    vec3 uvz = ndc * 0.5 + 0.5;
-    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))) || uvz.z > 1.0) return 1.0;
+    bool directional = lightType(L) == LIGHT_DIRECTIONAL;
+    vec3 toLight = directional ? -normalize(L.direction.xyz) : normalize(L.position.xyz - x);
+    float cosTheta = clamp(dot(n, toLight), -1.0, 1.0);
+    float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+    float size = L.shadowParams.y;
     int radius = int(L.shadowParams.z + 0.5);
-    float texel = 1.0 / L.shadowParams.y;
+    int count = clamp(int(L.shadowParams.w + 0.5), 1, SHADOW_MAX_CASCADES);
+    float margin = (float(radius) + 1.0) / size;  // the kernel's reach in a tile's uv
+    int cascade = count - 1;
+    vec3 uvz = vec3(0.0), p = x;
+    float texelWorld = 0.0;
+    for (int c = 0; c < count; ++c) {
+        vec4 k = L.shadowCascades[c];
+        texelWorld = directional ? k.w : k.w * distance(x, L.position.xyz);
+        p = x + n * (L.edgeV.w + L.shadowOrigin.w * texelWorld * sinTheta);
+        uvz = shadowCascadeUvz(L, k, p);
+        cascade = c;
+        if (all(greaterThanEqual(uvz.xy, vec2(margin))) && all(lessThanEqual(uvz.xy, vec2(1.0 - margin)))) break;
+    }
+    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))) || uvz.z > 1.0) return 1.0;
+    float texel = 1.0 / size;
+    // Receiver plane: two tangents one texel long, projected; dz/duv solves the 2 x 2 system.
+    vec4 k = L.shadowCascades[cascade];
+    vec3 t1 = normalize(cross(n, abs(n.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec3 t2 = cross(n, t1);
+    vec3 a = shadowCascadeUvz(L, k, p + t1 * texelWorld) - uvz;
+    vec3 b = shadowCascadeUvz(L, k, p + t2 * texelWorld) - uvz;
+    float det = a.x * b.y - a.y * b.x;
+    float zPerTexel = abs(shadowCascadeUvz(L, k, p + toLight * texelWorld).z - uvz.z);  // depth of one texel's distance
+    float maxSlope = kMaxReceiverSlope * zPerTexel / texel;
+    vec2 slope = abs(det) > 1e-20 ? vec2(a.z * b.y - b.z * a.y, b.z * a.x - a.z * b.x) / det : vec2(0.0);
+    // Directional maps only: spot maps keep the polygon offset (render/LightSet.cpp).
+    slope = directional ? clamp(slope, vec2(-maxSlope), vec2(maxSlope)) : vec2(0.0);
+    float footprint = (abs(slope.x) + abs(slope.y)) * texel;
+    // The cascade's tile in the atlas (2 x 2 with cascades, render/ShadowCascades.h); taps stay inside it.
+    float tiles = count > 1 ? 2.0 : 1.0;
+    vec2 tile = vec2(float(cascade % 2), float(cascade / 2));
     float sum = 0.0;
     for (int j = -radius; j <= radius; ++j)
-        for (int i = -radius; i <= radius; ++i) sum += texture(map2D, vec3(uvz.xy + vec2(i, j) * texel, uvz.z));
+        for (int i = -radius; i <= radius; ++i) {
+            vec2 offset = vec2(i, j) * texel;
+            vec2 local = clamp(uvz.xy + offset, vec2(0.5 * texel), vec2(1.0 - 0.5 * texel));
+            float z = uvz.z + dot(slope, offset) - footprint;
+            sum += textureLod(map2D, vec3((tile + local) / tiles, z), 0.0);
+        }
     float taps = float((2 * radius + 1) * (2 * radius + 1));
     return sum / taps;
 }

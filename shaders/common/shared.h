@@ -36,6 +36,9 @@ struct ViewUniforms {
     vec4 params;       // x: viewport width, y: viewport height, z: near, w: draw filter
 };
 
+// Tiles of a directional light's shadow atlas (2 x 2): view-fitted cascades plus the whole-scene map.
+#define SHADOW_MAX_CASCADES 4
+
 #define LIGHT_POINT 0
 #define LIGHT_SPOT 1
 #define LIGHT_DIRECTIONAL 2
@@ -49,8 +52,13 @@ struct LightGpu {
     vec4 edgeU;      // area light full edge vectors (xyz); w: shadow kind (0 none, 1 2D, 2 cube)
     vec4 edgeV;      // w: shadow bias (metres, along the normal)
     mat4 shadowClipFromWorld;  // 2D shadow maps
-    vec4 shadowParams;         // x: far distance of cube distance maps, y: map size, z: PCF radius (texels)
+    vec4 shadowParams;         // x: far distance of cube distance maps, y: map size (one cascade's tile), z: PCF
+                               // radius (texels), w: 2D maps: cascades in the map (docs/rendering.md "Shadows")
     vec4 shadowOrigin;         // xyz: centre of the cube distance map (area lights: just off the emitter)
+    // 2D maps, per cascade c < shadowParams.w, finest first, the last one the whole scene: xy: the
+    // cascade's origin in the shadowClipFromWorld map's [0,1]^2, z: its scale (cascade uv = (uv - xy) * z);
+    // w: the world size of one texel (metres; spot lights: metres per metre of distance from the light).
+    vec4 shadowCascades[SHADOW_MAX_CASCADES];
     vec4 area;                 // area lights: rgb radiance W/(m^2 sr) before the texture (emission.rgb is
                                // radiance times the texture's mean); w: flags AREA_TEXTURED | AREA_TWO_SIDED
 };
@@ -70,7 +78,7 @@ struct FrameUniforms {
 static_assert(sizeof(ObjectGpu) == 144);
 static_assert(sizeof(MaterialGpu) == 80);
 static_assert(sizeof(ViewUniforms) == 160);
-static_assert(sizeof(LightGpu) == 192);
+static_assert(sizeof(LightGpu) == 192 + SHADOW_MAX_CASCADES * 16);
 static_assert(sizeof(FrameUniforms) == 240);
 }  // namespace bounce::gpu
 #endif

@@ -19,6 +19,10 @@ constexpr float kMaxPerspectiveSpotAngle = glm::radians(80.0f);
 // geometry next to the light, large enough to keep 32-bit float depth precise.
 constexpr float kNearFraction = 1e-3f;
 
+// glPolygonOffset of shadow maps (the values before issue 30): the depth slope's factor (not for
+// directional maps since issue 30: theirs is the receiver-plane bias, see update()) and depth units.
+constexpr float kSlopeBias = 1.5f, kConstantBias = 2.0f;
+
 // LightGpu::edgeU.w: which shadow map a light has (matches common/lighting.glsl).
 constexpr float k2D = 1.0f, kCube = 2.0f;
 
@@ -131,7 +135,7 @@ void LightSet::bindShadowMaps(size_t i, unsigned unit2D, unsigned unitCube) cons
     (e.gpu.edgeU.w == k2D ? e.depth : m_dummy2D).bind(unit2D);
 }
 
-void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
+void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings, const View& camera) {
     const SceneGpu& scene = drawer.scene();
     const std::vector<Light>& lights = scene.lights();
     if (m_entries.size() != lights.size()) m_entries.resize(lights.size());
@@ -163,28 +167,39 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
         const float nearPlane = kNearFraction * diagonal;
         g.edgeU.w = cube ? kCube : k2D;
         g.edgeV.w = settings.shadowBias;
-        g.shadowParams = glm::vec4(farPlane, static_cast<float>(size), static_cast<float>(settings.pcfRadius), 0.0f);
+        ShadowCascades cascades;
         if (!cube) {
             glm::mat4 viewFromWorld, clipFromView;
             if (light.type == LightType::Directional) {
+                // The whole-scene map: the scene's bounding sphere seen along the light; the cascades
+                // in front of it are sub-squares of its [0,1]^2, at the same depth range.
                 const glm::vec3 d = glm::normalize(light.direction);
                 const glm::vec3 eye = centre - d * (radius * 2.0f);
                 viewFromWorld = glm::lookAt(eye, centre, anyPerpendicular(d));
                 clipFromView = glm::ortho(-radius, radius, -radius, radius, radius, radius * 3.0f);
+                cascades = fitShadowCascades(clipFromView * viewFromWorld, radius, camera, lo, hi,
+                                             settings.shadowCascades, size);
             } else {
                 const glm::vec3 d = glm::normalize(light.direction);
                 viewFromWorld = glm::lookAt(light.position, light.position + d, anyPerpendicular(d));
                 clipFromView = glm::perspective(2.0f * light.cutoffAngle, 1.0f, nearPlane, farPlane);
+                // One texel at distance r from the light spans 2 r tan(cutoff) / size metres.
+                cascades.cascades[0] = glm::vec4(0.0f, 0.0f, 1.0f, 2.0f * std::tan(light.cutoffAngle) / size);
             }
             g.shadowClipFromWorld = clipFromView * viewFromWorld;
         }
+        const int tiles = shadowAtlasTiles(cascades.count);
+        for (int c = 0; c < SHADOW_MAX_CASCADES; ++c) g.shadowCascades[c] = cascades.cascades[c];
+        g.shadowParams = glm::vec4(farPlane, static_cast<float>(size), static_cast<float>(settings.pcfRadius),
+                                   static_cast<float>(cascades.count));
 
         const bool dynamicOccluders = scene.hasDynamicObjects();
-        const bool needsRender = !e.valid || e.size != size || !sameLight(e.rendered, light) || dynamicOccluders ||
-                                 (e.gpu.edgeU.w != g.edgeU.w);
+        const bool refit = !cube && (cascades.count != e.cascades.count || cascades.cascades != e.cascades.cascades);
+        const bool needsRender = !e.valid || e.size != size || e.tiles != tiles || !sameLight(e.rendered, light) ||
+                                 dynamicOccluders || refit || (e.gpu.edgeU.w != g.edgeU.w);
         if (!e.ubo) e.ubo = gl::Buffer::create("light.uniforms", sizeof(gpu::LightGpu));
         if (needsRender) {
-            if (e.size != size || e.gpu.edgeU.w != g.edgeU.w || !e.valid) {
+            if (e.size != size || e.tiles != tiles || e.gpu.edgeU.w != g.edgeU.w || !e.valid) {
                 e.fbo = gl::Framebuffer::create("shadow.fbo");
                 if (cube) {
                     gl::TextureDesc d;
@@ -196,7 +211,7 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
                     d.minFilter = d.magFilter = GL_NEAREST;
                     e.depth = gl::Texture::create("shadow.cubeDepth", d);
                 } else {
-                    e.depth = gl::Texture::create2D("shadow.depth", size, size, GL_DEPTH_COMPONENT32F);
+                    e.depth = gl::Texture::create2D("shadow.depth", size * tiles, size * tiles, GL_DEPTH_COMPONENT32F);
                     e.depth.setCompareMode(true);
                     e.distance = gl::Texture();
                 }
@@ -205,9 +220,14 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
             glDepthFunc(GL_LESS);
             glDisable(GL_BLEND);
             glDisable(GL_CULL_FACE);
-            // Slope-scaled offset against acne on surfaces at grazing angles to the light.
+            // Directional maps' slope-scaled bias is the receiver plane's, in the shader
+            // (common/lighting.glsl): a slope factor on top only lifts occluders off their contacts (light
+            // leaks under courtyard's arches; docs/rendering.md), so they keep the constant units alone
+            // (depth quantization where the receiver plane's slope is 0). Spot maps keep both (their
+            // shadows were right before issue 30: cornell-box lost 0.2 % of its light with the receiver
+            // plane, at the box's concave corners), cube maps too, for their z-test.
             glEnable(GL_POLYGON_OFFSET_FILL);
-            glPolygonOffset(1.5f, 2.0f);
+            glPolygonOffset(light.type == LightType::Directional ? 0.0f : kSlopeBias, kConstantBias);
             if (cube) {
                 m_distanceProgram.use();
                 for (int face = 0; face < 6; ++face) {
@@ -231,22 +251,33 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings) {
                 e.fbo.bind();
                 const float clear = 1.0f;
                 glClearNamedFramebufferfv(e.fbo.id(), GL_DEPTH, 0, &clear);
-                View v;
-                v.viewFromWorld = glm::mat4(1.0f);
-                v.clipFromView = g.shadowClipFromWorld;
-                v.eye = light.position;
-                v.nearPlane = nearPlane;
-                v.farPlane = farPlane;
-                v.viewport = {size, size};
-                drawer.draw(v);
+                // Each cascade into its tile: the whole atlas is the viewport, the scissor keeps the
+                // cascade's triangles out of its neighbours' tiles.
+                if (tiles > 1) glEnable(GL_SCISSOR_TEST);
+                for (int c = 0; c < cascades.count; ++c) {
+                    glScissor((c % 2) * size, (c / 2) * size, size, size);
+                    View v;
+                    v.viewFromWorld = glm::mat4(1.0f);
+                    v.clipFromView = tiles > 1 ? cascadeAtlasClipFromWorld(g.shadowClipFromWorld, cascades, c)
+                                               : g.shadowClipFromWorld;
+                    v.eye = light.position;
+                    v.nearPlane = nearPlane;
+                    v.farPlane = farPlane;
+                    v.viewport = {size * tiles, size * tiles};
+                    drawer.draw(v);
+                }
+                glDisable(GL_SCISSOR_TEST);
             }
             glDisable(GL_POLYGON_OFFSET_FILL);
             e.rendered = light;
             e.size = size;
+            e.tiles = tiles;
+            e.cascades = cascades;
             e.valid = true;
             ++m_mapsRendered;
         }
-        g.shadowOrigin = glm::vec4(origin, 1.0f);
+        // The texel-scaled normal offset (common/lighting.glsl), in texels: shadowNormalOffset kernel reaches.
+        g.shadowOrigin = glm::vec4(origin, settings.shadowNormalOffset * (settings.pcfRadius + 1.0f) * std::sqrt(2.0f));
         e.gpu = g;
         e.ubo.upload(0, sizeof(g), &g);
     }

@@ -3,11 +3,13 @@
 // its shadow map. Spot lights up to
 // kMaxPerspectiveSpotAngle get a perspective 2D depth map; directional lights an orthographic one
 // fitted to the scene bounds; point lights, area lights (from their centre) and wider spots a cube
-// map of light-to-surface distance. Maps are re-rendered only when their light or a dynamic object
-// moved (static scenes render them once).
+// map of light-to-surface distance. A directional light's map is an atlas of view-fitted cascades
+// and the whole-scene map (render/ShadowCascades.h, docs/rendering.md "Shadows"). Maps are re-rendered
+// only when their light, a dynamic object or (cascades) the camera moved: static views render them once.
 #include "common/shared.h"
 #include "gpu/Program.h"
 #include "render/RenderSettings.h"
+#include "render/ShadowCascades.h"
 #include "render/SceneDrawer.h"
 
 #include <cstdint>
@@ -19,8 +21,9 @@ class LightSet {
 public:
     static Expected<LightSet> create();
 
-    // Updates LightGpu data for the lights at the scene's current time and re-renders stale maps.
-    void update(SceneDrawer& drawer, const RenderSettings& settings);
+    // Updates LightGpu data for the lights at the scene's current time and re-renders stale maps;
+    // directional lights' cascades are fitted to `camera`.
+    void update(SceneDrawer& drawer, const RenderSettings& settings, const View& camera);
 
     size_t count() const { return m_entries.size(); }
     const gpu::LightGpu& light(size_t i) const { return m_entries[i].gpu; }
@@ -41,11 +44,13 @@ public:
 private:
     struct Entry {
         gpu::LightGpu gpu{};
-        gl::Texture depth;      // 2D depth, or cube depth for the z-test of cube maps
+        gl::Texture depth;      // 2D depth (directional: the cascades' atlas), or cube depth for the z-test of cube maps
         gl::Texture distance;   // cube R32F distance / far
         gl::Framebuffer fbo;
         gl::Buffer ubo;
         int size = 0;
+        int tiles = 1;          // atlas tiles per side (render/ShadowCascades.h)
+        ShadowCascades cascades;  // what the map was rendered with
         Light rendered;         // the light state the map was rendered for
         bool valid = false;
         gl::Texture emission;   // area light texture (empty: untextured)

@@ -136,7 +136,7 @@ FrameStats Pipeline::renderFrame(uint32_t frame, float time, const Camera* camer
 
     {
         auto s = m_timers.scope("shadow-maps");
-        m_lights.update(m_drawer, m_settings);
+        m_lights.update(m_drawer, m_settings, view);
     }
     {
         auto s = m_timers.scope("gbuffer");
