@@ -6,6 +6,7 @@
 #include "reference/PathTracer.h"
 #include "scene/MeshBuilder.h"
 #include "scene/SceneLoader.h"
+#include "SceneFileTestSupport.h"
 
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ringbuffer_sink.h>
@@ -18,23 +19,9 @@
 
 namespace fs = std::filesystem;
 using namespace bounce;
+using namespace bounce::scenefiletest;
 
 namespace {
-
-fs::path tempDir() {
-    static const fs::path dir = [] {
-        fs::path d = fs::temp_directory_path() / ("bounce-material-maps-test-" + std::to_string(::getpid()));
-        fs::create_directories(d);
-        return d;
-    }();
-    return dir;
-}
-
-fs::path writeFile(const std::string& name, const std::string& text) {
-    const fs::path p = tempDir() / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-}
 
 void appendBytes(void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
@@ -46,41 +33,6 @@ std::string png(int w, int h, int channels, const std::vector<unsigned char>& by
     EXPECT_TRUE(stbi_write_png_to_func(appendBytes, &out, w, h, channels, bytes.data(), w * channels));
     return out;
 }
-
-std::string base64(const std::string& bytes) {
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        const uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8) | uint8_t(bytes[i + 2]);
-        for (int k = 3; k >= 0; --k) out += kAlphabet[(v >> (6 * k)) & 63];
-    }
-    if (i + 1 == bytes.size()) {
-        const uint32_t v = uint8_t(bytes[i]) << 16;
-        out += std::string{kAlphabet[(v >> 18) & 63], kAlphabet[(v >> 12) & 63], '=', '='};
-    } else if (i + 2 == bytes.size()) {
-        const uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8);
-        out += std::string{kAlphabet[(v >> 18) & 63], kAlphabet[(v >> 12) & 63], kAlphabet[(v >> 6) & 63], '='};
-    }
-    return out;
-}
-
-class LogCapture {
-public:
-    LogCapture() : m_sink(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(128)), m_previous(spdlog::default_logger()) {
-        spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", m_sink));
-    }
-    ~LogCapture() { spdlog::set_default_logger(m_previous); }
-    std::string text() const {
-        std::string out;
-        for (const std::string& line : m_sink->last_formatted()) out += line;
-        return out;
-    }
-
-private:
-    std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> m_sink;
-    std::shared_ptr<spdlog::logger> m_previous;
-};
 
 // One quad (two triangles) in the xz plane facing +y with uvs, and three materials' worth of options:
 // `material` is the glTF material object's text.
