@@ -58,7 +58,7 @@ bool outerBitsSet(ivec2 texel, int s0, int s1) {
 struct OuterRay {
     vec4 ca, cb;         // clip coordinates of a and b in the outer grid
     float za, zb;        // their view depths
-    float skip, length;  // metres: kOuterEndVoxels voxels, |b - a|
+    float skip, span;  // metres: kOuterEndVoxels voxels, |b - a| (not `length`: a method name in GLSL, glslang refuses it as a member)
 };
 OuterRay outerRay(vec3 a, vec3 b) {
     OuterRay r;
@@ -68,7 +68,7 @@ OuterRay outerRay(vec3 a, vec3 b) {
     float column = max(2.0 / (length(vec3(m4[0][0], m4[1][0], m4[2][0])) * res.x),
                        2.0 / (length(vec3(m4[0][1], m4[1][1], m4[2][1])) * res.y));
     r.skip = kOuterEndVoxels * max(column, u_outerVoxels.depth.w);
-    r.length = distance(a, b);
+    r.span = distance(a, b);
     r.ca = m4 * vec4(a, 1.0);
     r.cb = m4 * vec4(b, 1.0);
     r.za = -(u_outerVoxels.viewFromWorld * vec4(a, 1.0)).z;
@@ -80,7 +80,7 @@ bool outerSegmentBlocked(OuterRay r, float t0, float t1, int thickness) {
     int bits = int(u_outerVoxels.grid.z);
     if (bits < 1) return false;
     float tm = 0.5 * (t0 + t1);
-    if (tm * r.length < r.skip || (1.0 - tm) * r.length < r.skip) return false;
+    if (tm * r.span < r.skip || (1.0 - tm) * r.span < r.skip) return false;
     vec4 cm = mix(r.ca, r.cb, tm);
     vec2 ndc = cm.xy / cm.w;
     if (cm.w <= 0.0 || any(greaterThan(abs(ndc), vec2(1.0)))) return false;
