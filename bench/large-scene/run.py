@@ -3,8 +3,8 @@
 techniques within 1 s a frame at 256^2 on llvmpipe, the progressive radiosity methods within 2 s a frame
 while they converge over frames; `radiosity-gather`, the expensive reference, is timed, not budgeted).
 
-Usage: bench/large-scene/run.py [BOUNCE] [--size N] [--frames N] [--lights sun,sky] [--techniques a,b]
-       (defaults: build/src/app/bounce, 256, 6 frames, both lights, every technique; any Python 3)
+Usage: bench/large-scene/run.py [BOUNCE] [--size N] [--frames N] [--lights sun,sky] [--techniques a,b] [--timeout S]
+       (defaults: build/src/app/bounce, 256, 6 frames, both lights, every technique, 600 s; any Python 3)
 
 Each (technique, light) is one `bounce render --stats` process at the technique's defaults (the mode a
 user runs: GL timestamp queries, no debug context); recorded per pair: the first frame's wall ms (shader
@@ -37,19 +37,19 @@ UNBUDGETED = {"radiosity-gather"}
 ONE_FRAME = {"radiosity-gather"}
 # A run past this is stopped and recorded as such (a technique that needs longer is no interactive
 # technique on this scene; the radiosity methods once took hours here).
-RUN_TIMEOUT_S = 600
+RUN_TIMEOUT_S = 600  # seconds; --timeout overrides
 
 
-def render(bounce, technique, size, frames, light):
+def render(bounce, technique, size, frames, light, timeout):
     """One `bounce render --stats` process: (run record, None, command) or (None, (kind, message), command)."""
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "run.json")
         cmd = [bounce, "render", "--scene", SCENE, "--scene-param", f"light={light}", "--technique", technique,
                "--size", f"{size}x{size}", "--frames", str(frames), "--out", os.path.join(tmp, "o.exr"), "--stats", stats]
         try:
-            r = subprocess.run(cmd, capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+            r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
         except subprocess.TimeoutExpired:
-            return None, ("timedOut", f"stopped after {RUN_TIMEOUT_S} s"), rel(cmd)
+            return None, ("timedOut", f"stopped after {timeout:g} s"), rel(cmd)
         if r.returncode != 0:
             lines = r.stderr.strip().splitlines()
             return None, ("refused" if r.returncode == 1 else "error", lines[-1] if lines else f"status {r.returncode}"), rel(cmd)
@@ -74,17 +74,18 @@ def main():
     frames = option(args, "--frames", 6)
     lights = option(args, "--lights", "sun,sky", str).split(",")
     only = option(args, "--techniques", "", str)
+    timeout = option(args, "--timeout", RUN_TIMEOUT_S, float)
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
     names = [t for t in techniques(bounce) if not only or t in only.split(",")]
-    rec = new_record("large-scene", f"bench/large-scene/run.py --size {size} --frames {frames} --lights {','.join(lights)}"
+    rec = new_record("large-scene", f"bench/large-scene/run.py --size {size} --frames {frames} --lights {','.join(lights)} --timeout {timeout:g}"
                      + (f" --techniques {only}" if only else ""), bounce)
     rec.update({"scene": SCENE, "size": size, "frames": frames, "gpuBudgetMs": GPU_BUDGET_MS,
-                "radiosityBudgetMs": RADIOSITY_BUDGET_MS, "runTimeoutSeconds": RUN_TIMEOUT_S, "results": {}})
+                "radiosityBudgetMs": RADIOSITY_BUDGET_MS, "runTimeoutSeconds": timeout, "results": {}})
     for light in lights:
         rows = rec["results"].setdefault(light, {})
         for t in names:
             n = 1 if t in ONE_FRAME else frames
-            record, failure, cmd = render(bounce, t, size, n, light)
+            record, failure, cmd = render(bounce, t, size, n, light, timeout)
             if failure:
                 rows[t] = {failure[0]: failure[1], "command": cmd}
                 print(f"{light:4} {t:22} {failure[0]}: {failure[1]}", flush=True)
