@@ -120,7 +120,10 @@ TEST_F(DispatchGridGpuTest, RadiosityPassesWrapIntoRowsAndGiveTheSameImage) {
         {"radiosity-gather", {{"elementSize", "0.25"}, {"hemicubeSize", "32"}, {"integration", "mipmap"}, {"bounces", "2"}}},
         {"radiosity-cross", {{"elementSize", "0.25"}, {"hemicubeSize", "32"}}},
     };
-    for (const auto& [method, settings] : runs) {
+    for (const auto& run : runs) {
+        // Named, not a structured binding: clang 14 (the sanitizer build) cannot capture bindings in a lambda.
+        const std::string& method = run.first;
+        const std::map<std::string, std::string>& settings = run.second;
         auto render = [&] {
             auto p = nicholstest::makePipeline(*scene, method, settings, 32);
             for (uint32_t f : {0u, 1u}) p->renderFrame(f);
