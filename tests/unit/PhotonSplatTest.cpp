@@ -364,6 +364,9 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
     // holds a sampled point of the volume (BundleVolume::contains) must never be culled, and the test
     // must also cull.
     Rng rng(11, 0, 0);
+    // The culled boxes' probe points draw from their own stream, so the bundles and boxes do not depend on
+    // what the cull decided (a mutation then changes the count, not the scene).
+    Rng probe(12, 0, 0);
     const glm::vec3 lo(-4.0f), hi(4.0f);
     int culled = 0, boxes = 0;
     for (int i = 0; i < 200; ++i) {
@@ -371,7 +374,9 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
             const float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
             return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
         };
-        const glm::vec3 p(4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f);
+        // Braced lists and one draw per statement: the draws' order is the same under every compiler
+        // (function arguments and the operands of + are unsequenced: gcc and clang drew different scenes).
+        const glm::vec3 p{4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f};
         glm::vec3 n = unit(), w = unit();
         if (glm::dot(n, w) < 0.0f) w = -w;
         Photon ph;
@@ -382,7 +387,8 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
         b.direction = w;
         bundleAxes(b.direction, b.right, b.up);
         b.hitDistance = 1.0f + rng.next();
-        b.hitNormal = glm::normalize(-w + 0.8f * unit());
+        const glm::vec3 tilt = unit();
+        b.hitNormal = glm::normalize(-w + 0.8f * tilt);
         VolumeSettings vs;
         vs.half = 0.1f + 0.4f * rng.next();
         vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
@@ -394,21 +400,24 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
         for (int k = 0; k < 40; ++k) {
             // Boxes around the bundle: within 2.5 h of its axis, from 0.5 m behind the photon to 3 m on.
             const float h = v.half;
-            const glm::vec3 c = p + 2.5f * h * (2.0f * rng.next() - 1.0f) * b.right + 2.5f * h * (2.0f * rng.next() - 1.0f) * b.up +
-                                (3.5f * rng.next() - 0.5f) * w;
-            const glm::vec3 e = h * (glm::vec3(0.05f) + 0.5f * glm::vec3(rng.next(), rng.next(), rng.next()));
+            const float across = 2.0f * rng.next() - 1.0f;
+            const float along = 2.0f * rng.next() - 1.0f;
+            const float ahead = 3.5f * rng.next() - 0.5f;
+            const glm::vec3 c = p + 2.5f * h * across * b.right + 2.5f * h * along * b.up + ahead * w;
+            const glm::vec3 e = h * (glm::vec3(0.05f) + 0.5f * glm::vec3{rng.next(), rng.next(), rng.next()});
             const bool keep = mayOverlap(v, c - e, c + e);
             ++boxes;
             culled += keep ? 0 : 1;
             if (keep) continue;
             for (int s = 0; s < 200; ++s) {
-                const glm::vec3 q = c + e * glm::vec3(2.0f * rng.next() - 1.0f, 2.0f * rng.next() - 1.0f, 2.0f * rng.next() - 1.0f);
+                const glm::vec3 q = c + e * glm::vec3{2.0f * probe.next() - 1.0f, 2.0f * probe.next() - 1.0f, 2.0f * probe.next() - 1.0f};
                 ASSERT_FALSE(v.contains(q)) << "bundle " << i << " box " << k;
             }
         }
     }
-    // And it culls: measured 6356 of the 8000 boxes (the seed is fixed); without the axes w x e_k
-    // 6271, without the emitter plane 6194. The bound leaves 26 boxes for rounding across compilers.
-    EXPECT_GE(culled, 6330) << "of " << boxes;
+    // And it culls: measured 6325 of the 8000 boxes with gcc 12 and clang 14 alike (the seeds are fixed,
+    // the draws sequenced); without the axes w x e_k 6291, without the emitter plane 6242. The bound
+    // leaves 15 boxes for rounding across compilers and catches both.
+    EXPECT_GE(culled, 6310) << "of " << boxes;
     EXPECT_EQ(boxes, 8000);
 }
