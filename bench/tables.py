@@ -630,11 +630,21 @@ def large_scene_table(rec, path):
     return "\n".join(lines)
 
 
+def demo_table(rec, path):
+    """Issue 30: `make demo`'s rendering part against its 3-minute budget, with the slowest pairs."""
+    slow = sorted(rec["pairs"], key=lambda p: -p["ms"])[:3]
+    study = "" if rec.get("studySeconds") is None else f", the study {rec['studySeconds']:.0f} s"
+    return (f"`make demo`'s rendering part at {rec['size']}: {rec['renderSeconds']:.0f} s (budget {rec['renderBudgetSeconds']} s; "
+            f"{rec['rendered']} images, {rec['refused']} one-line refusals, {rec['skipped']} pairs the demo skips{study}; slowest: "
+            + ", ".join(f"{p['scene']} × {p['technique']} {p['ms'] / 1000:.1f} s" for p in slow)
+            + f"). Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); `{rec['command']}`.")
+
+
 GENERATORS = {"vct": vct_table, "photon-splat": photon_splat_table, "radiosity": radiosity_table,
               "area-light": area_light_table, "vpl-visibility": vpl_visibility_table,
               "iir": iir_table, "nichols": nichols_table, "nichols-cap": nichols_cap_table, "foundation": foundation_table, "soak": soak_table,
               "interactive": interactive_table, "fidelity": fidelity_table,
-              "large-scene": large_scene_table}
+              "large-scene": large_scene_table, "demo": demo_table}
 
 
 def main():
