@@ -55,8 +55,10 @@ def main():
                     with open(stats) as f:
                         r = json.load(f)
                     c = r["frames"][-1]["counters"]
-                    # A binary from before the charts reports neither the derived size nor the ghosts.
-                    entry.update({"triangles": r["scene"]["triangles"], "elementSize": c.get("elementSize", float(value)),
+                    # A binary from before the charts reports neither the derived size nor the ghosts (the size
+                    # was a counter in the first charts commits, the run record's `derived` since).
+                    size_used = r.get("derived", {}).get("elementSizeMetres", c.get("elementSize", float(value)))
+                    entry.update({"triangles": r["scene"]["triangles"], "elementSize": size_used,
                                   "elements": int(c["elements"]), "activeElements": int(c.get("activeElements", c["elements"])),
                                   "charts": int(c["quads"]), "setup_s": round(r["setup_seconds"], 2)})
                 record["results"].append(entry)

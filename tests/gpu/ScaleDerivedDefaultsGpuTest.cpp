@@ -78,6 +78,8 @@ TEST_F(ScaleDerivedDefaultsGpuTest, RunRecordPrintsThemAndTheyScaleWithTheScene)
         {"vct", {"boxSideMetres", "boxCentreXMetres", "boxCentreYMetres", "boxCentreZMetres", "voxelSizeMetres",
                  "maxDistanceMetres", "aoDistanceMetres"}},
         {"photon-splat", {"sceneDiagonalMetres", "mapSizeMetres", "depthToleranceMetres"}},
+        // sqrt(area / 1000): the area 100x, the size 10x.
+        {"radiosity-pr", {"elementSizeMetres", "dynamicElementSizeMetres"}},
     };
     for (const auto& [technique, names] : expected) {
         const nlohmann::json a = derivedOf(small, technique), b = derivedOf(large, technique);

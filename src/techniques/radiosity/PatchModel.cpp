@@ -108,11 +108,13 @@ std::vector<glm::dvec2> convexHull(std::vector<glm::dvec2> pts) {
 
 float autoElementSize(const Scene& scene) {
     double area = 0.0;
+    // World-space area (the objects' transforms at t = 0: a scene scaled 10x has 100x the area).
     for (const Object& obj : scene.objects) {
         const Mesh& mesh = scene.meshes[obj.mesh];
+        const glm::mat4 m = obj.worldFromObject(0.0f);
+        const auto world = [&](size_t i) { return glm::vec3(m * glm::vec4(mesh.positions[mesh.indices[i]], 1.0f)); };
         for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-            const glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
-                            c = mesh.positions[mesh.indices[3 * t + 2]];
+            const glm::vec3 a = world(3 * t), b = world(3 * t + 1), c = world(3 * t + 2);
             area += 0.5 * glm::length(glm::cross(b - a, c - a));
         }
     }

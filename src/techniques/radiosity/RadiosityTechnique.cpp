@@ -102,6 +102,12 @@ Expected<void> RadiosityTechnique::setup(const SetupContext& ctx) {
     return {};
 }
 
+void RadiosityTechnique::derivedSettings(std::map<std::string, double>& out) const {
+    if (!m_system) return;
+    out["elementSizeMetres"] = m_system->patches().elementSize();
+    out["dynamicElementSizeMetres"] = m_system->patches().dynamicElementSize();
+}
+
 void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect) {
     m_frameShooters = m_frameIterations = m_frameMovingPatches = m_frameRedistributionHemicubes = 0;
     m_budgetHit = false;
@@ -120,8 +126,6 @@ void RadiosityTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& in
     ctx.counters["elements"] = static_cast<double>(pm.elements().size());
     ctx.counters["activeElements"] = static_cast<double>(pm.activeElementCount());
     ctx.counters["quads"] = static_cast<double>(pm.quads().size());
-    ctx.counters["elementSize"] = pm.elementSize();  // metres: the setting, or what auto derived
-    ctx.counters["dynamicElementSize"] = pm.dynamicElementSize();
     ctx.counters["hemicubes"] = m_frameHemicubes;
     ctx.counters["shooters"] = m_frameShooters;
     ctx.counters["iterations"] = m_frameIterations;

@@ -24,6 +24,8 @@ public:
     // ".shot", ".backOld", ".back" (cross redistribution), ".radiosity" (the gather's). Layer 5 k is
     // hemicube k's top face, 5 k + 1..4 its half-high sides.
     void debugViews(std::vector<DebugView>& out) const override;
+    // The element sizes as used, metres: the settings, or what auto derived from the scene's area.
+    void derivedSettings(std::map<std::string, double>& out) const override;
     std::string_view frameReadbackReason() const override {
         return "van de Hoef (2013) FINDSHOOTINGQUAD: each quad's unshot power is read back for the CPU's "
                "arg-max over the quads, the thesis's own CPU-GPU stall";
