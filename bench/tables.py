@@ -577,7 +577,9 @@ def fidelity_table(rec, path):
              f"each technique at its defaults, {rec['size']}², against `bounce reference` at {rec['spp']} spp in the scope `bounce list` "
              "declares for it. Cells: energy (image mean / reference mean) and relMSE; **bold** where the energy leaves "
              f"±{tol * 100:.0f} % or the relMSE is not below the no-GI image's (the shared direct pass's image of the same component); "
-             "— where the technique refuses the scene (one-line error). The last rows are the no-GI relMSE of each reference scope.", "",
+             "— where the technique refuses the scene (one-line error)"
+             + (f"; *stopped* where a render ran past {rec['runTimeoutSeconds']:g} s" if rec.get("runTimeoutSeconds") else "")
+             + ". The last rows are the no-GI relMSE of each reference scope.", "",
              "| technique | " + " | ".join(f"`{s}`" for s in scenes) + " |", "|---|" + "---|" * len(scenes)]
     nogi = {}  # (scope, component) -> scene -> the no-GI image's relMSE in that scope
     for t in techniques:
@@ -586,6 +588,9 @@ def fidelity_table(rec, path):
             e = res[sc][t]
             if "refused" in e:
                 cells.append("—")
+                continue
+            if "timedOut" in e:
+                cells.append("*stopped*")
                 continue
             m = e["metrics"]
             nogi.setdefault((e["scope"], e["component"]), {}).setdefault(sc, e["noGi"]["relMse"])

@@ -2,6 +2,7 @@
 """Fidelity of every technique on every built-in scene against the reference scope it declares.
 
 Usage: bench/fidelity/run.py [BOUNCE] [--size N] [--spp N] [--scenes a,b] [--techniques x,y] [--name NAME]
+                             [--timeout S]
        (BOUNCE defaults to build/src/app/bounce; any Python 3, no numpy)
 
 For each (technique, scene): `bounce render` at the technique's defaults (`FRAMES` frames: the image a
@@ -10,7 +11,8 @@ user sees after the technique has settled), the component its scope names, again
 scope (black indirect light for indirect scopes; the shared `direct` pass for full-image scopes).
 Recorded per pair: energy (image mean / reference mean), relMSE, relRMS and LDR-FLIP of the technique
 and of the no-GI image, the render's wall time, or the one-line refusal of a scene the technique does
-not accept. The raw record goes to bench/results/<NAME>-<date>.json (NAME defaults to `fidelity`);
+not accept, or *stopped* where a render ran past `--timeout` seconds (default: none; the gather on the
+Sponza-class scene takes minutes a frame on llvmpipe). The raw record goes to bench/results/<NAME>-<date>.json (NAME defaults to `fidelity`);
 bench/tables.py turns it into the README's fidelity table.
 """
 import functools
@@ -67,7 +69,7 @@ def scenes(bounce):
     return subprocess.run([bounce, "list", "--scenes", "--names"], check=True, capture_output=True, text=True).stdout.split()
 
 
-def render(bounce, scene, technique, size, frames, component, out, start=0):
+def render(bounce, scene, technique, size, frames, component, out, start=0, timeout=None):
     cmd = [bounce, "render", "--scene", scene, "--technique", technique, "--size", f"{size}x{size}", "--frames",
            str(frames), "--component", component, "--out", out]
     for k, v in SETTINGS.get(technique, {}).items():
@@ -75,7 +77,10 @@ def render(bounce, scene, technique, size, frames, component, out, start=0):
     if start:
         cmd += ["--start-frame", str(start)]
     t0 = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None, rel(cmd), None
     wall = time.monotonic() - t0
     if p.returncode != 0:
         lines = [l for l in p.stderr.strip().splitlines() if l.strip()]
@@ -90,13 +95,14 @@ def main():
     only_scenes = option(args, "--scenes", "", str)
     only_techniques = option(args, "--techniques", "", str)
     name = option(args, "--name", "fidelity", str)
+    timeout = option(args, "--timeout", None, float)
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
     scopes = list_techniques(bounce)
     scene_list = [s for s in scenes(bounce) if not only_scenes or s in only_scenes.split(",")]
     techniques = [t for t in scopes if not only_techniques or t in only_techniques.split(",")]
     record = new_record(name, " ".join(["bench/fidelity/run.py"] + sys.argv[1:]), bounce)
     record.update({"size": size, "spp": spp, "frames": FRAMES, "settings": SETTINGS, "energyTolerance": ENERGY_TOLERANCE,
-                   "results": {}})
+                   "runTimeoutSeconds": timeout, "results": {}})
     with tempfile.TemporaryDirectory() as tmp:
         refs = {}
 
@@ -119,9 +125,11 @@ def main():
                 flags, component = scopes[technique]
                 frames = FRAMES.get(technique, 1)
                 out = os.path.join(tmp, "t.exr")
-                wall, cmd, refusal = render(bounce, scene, technique, size, frames, component, out)
+                wall, cmd, refusal = render(bounce, scene, technique, size, frames, component, out, timeout=timeout)
                 entry = {"command": cmd, "frames": frames, "scope": " ".join(flags), "component": component}
-                if refusal:
+                if wall is None and refusal is None:
+                    entry["timedOut"] = f"stopped after {timeout:g} s"
+                elif refusal:
                     entry["refused"] = refusal
                 else:
                     ref, ref_cmd, noise = reference(scene, flags, frames - 1)
@@ -139,7 +147,7 @@ def main():
                 m = entry.get("metrics")
                 print(f"{scene:22s} {technique:22s} " + (f"energy {m['energy']:.3f} relMSE {m['relMse']:.4f} "
                       f"(no GI {entry['noGi']['relMse']:.4f}) {'baseline' if entry.get('baseline') else 'ok' if entry['withinBounds'] else 'OUT'} {wall:.1f}s"
-                      if m else f"refused: {entry['refused'][:90]}"), flush=True)
+                      if m else entry.get("timedOut") or f"refused: {entry['refused'][:90]}"), flush=True)
     print(write_record(record))
 
 
