@@ -5,6 +5,7 @@
 // "derived" (Technique::derivedSettings). The same scene scaled 10x about the origin must report every
 // such value 10x, and a value the user set must be reported as set.
 #include "GpuTestSupport.h"
+#include "NicholsTestSupport.h"
 #include "app/RunRecord.h"
 #include "core/Settings.h"
 #include "render/RenderSettings.h"
@@ -110,4 +111,32 @@ TEST_F(ScaleDerivedDefaultsGpuTest, RunRecordPrintsThemAndTheyScaleWithTheScene)
                 0.06 * 10.0 * d, 1e-5 * d);
     EXPECT_NEAR(derivedOf(large, "vct", {{"boxSide", "30"}})["boxSideMetres"].get<double>(), 30.0, 1e-4);
     EXPECT_NEAR(derivedOf(large, "photon-splat", {{"mapSize", "2"}})["mapSizeMetres"].get<double>(), 2.0, 1e-6);
+}
+
+// Radiosity on a scaled scene: element areas and the pitch are world metres (PatchModel's areaMap), so
+// the Cornell box scaled 10x (its objects by their transforms, the light by its edges: the same
+// radiance over 100x the area) gives the same image. Object-space areas and pitch (before) gave the
+// scaled scene's surfaces 1/100 of their area against the light's world-space quad: 0.60 of the
+// indirect light.
+TEST_F(ScaleDerivedDefaultsGpuTest, RadiosityIsTheSameOnTheSceneScaled) {
+    auto loaded = loadScene("cornell-box-area");
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    const Scene small = *loaded, large = scaled(*loaded, 10.0f);
+    double indirect[2] = {0.0, 0.0}, full[2] = {0.0, 0.0};
+    int k = 0;
+    for (const Scene* s : {&small, &large}) {
+        auto p = nicholstest::makePipeline(*s, "radiosity-pr", {{"frameBudgetMs", "0"}}, 32);
+        p->renderFrame(0);
+        indirect[k] = nicholstest::totalRadiance(p->readback(Component::Indirect));
+        full[k] = nicholstest::totalRadiance(p->readback(Component::Full));
+        ++k;
+    }
+    std::printf("radiosity-pr indirect %.6g / %.6g, full %.6g / %.6g (cornell-box-area / scaled 10x)\n", indirect[0],
+                indirect[1], full[0], full[1]);
+    ASSERT_GT(indirect[0], 0.0);
+    // Measured: indirect 508.625 / 508.579 (ratio 0.99991), full 1228.62 / 1228.58; before the fix
+    // 508.6 / 303.3 (0.596). The bound 2 %: float rounding at another scale only, far inside the 40 %
+    // the object-space areas lost.
+    EXPECT_NEAR(indirect[1] / indirect[0], 1.0, 0.02);
+    EXPECT_NEAR(full[1] / full[0], 1.0, 0.02);
 }

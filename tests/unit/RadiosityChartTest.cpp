@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -175,4 +176,29 @@ TEST(RadiosityCharts, AutomaticElementSizeFollowsTheSceneArea) {
     ASSERT_TRUE(given.ok());
     EXPECT_EQ(given->elementSize(), 0.5f);
     EXPECT_EQ(given->elements().size(), 25u);
+}
+
+TEST(RadiosityCharts, ScaledObjectsGetWorldAreasAndWorldPitch) {
+    // The 2 x 2 m square scaled 3x along x and 0.5x along z (a 6 x 1 m^2 square in the world): at a
+    // 0.1 m pitch the chart has (6 / 0.1 + 1) x (1 / 0.1 + 1) = 61 x 11 texels, and its elements sum to
+    // 6 m^2. Object-space sizing (before) gave 21 x 21 texels and 4 m^2: shooting 2/3 of the flux.
+    Scene s = finelyCutSquare(10);
+    s.objects[0].transform = glm::scale(glm::mat4(1.0f), glm::vec3(3.0f, 1.0f, 0.5f));
+    auto pm = PatchModel::build(s, PatchOptions{0.1f, 0.1f});
+    ASSERT_TRUE(pm.ok()) << pm.error().message;
+    ASSERT_EQ(pm->quads().size(), 1u);
+    const Quad& q = pm->quads()[0];
+    EXPECT_EQ(std::min(q.nu, q.nv), 11);
+    EXPECT_EQ(std::max(q.nu, q.nv), 61);
+    EXPECT_NEAR(elementArea(*pm), 6.0, 6e-5);
+    EXPECT_NEAR(q.area, 6.0f, 6e-5f);
+    // A uniform 10x scale: 100x the area, and the automatic pitch (sqrt(area / 1000)) 10x.
+    Scene big = finelyCutSquare(10);
+    big.objects[0].transform = glm::scale(glm::mat4(1.0f), glm::vec3(10.0f));
+    auto small = PatchModel::build(finelyCutSquare(10), PatchOptions{});
+    auto large = PatchModel::build(big, PatchOptions{});
+    ASSERT_TRUE(small.ok() && large.ok());
+    EXPECT_NEAR(large->elementSize(), 10.0f * small->elementSize(), 1e-4f * large->elementSize());
+    EXPECT_EQ(large->elements().size(), small->elements().size());
+    EXPECT_NEAR(elementArea(*large), 100.0 * elementArea(*small), 1e-3);
 }

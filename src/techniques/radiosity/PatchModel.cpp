@@ -154,7 +154,8 @@ glm::vec3 punctualDirectRadiance(const Light& light, glm::vec3 p, glm::vec3 n, g
     return albedo * irradiance * std::max(glm::dot(n, l), 0.0f) * glm::one_over_pi<float>();
 }
 
-void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const std::function<glm::vec3(glm::vec2)>& albedo) {
+void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const std::function<glm::vec3(glm::vec2)>& albedo,
+                          const glm::dmat3& areaMap) {
     const auto quad = static_cast<uint32_t>(m_quads.size());
     q.firstElement = static_cast<uint32_t>(m_elements.size());
     q.surface = quad;
@@ -190,8 +191,10 @@ void PatchModel::addChart(Quad q, const std::vector<ChartTriangle>& tris, const 
             for (int k = 0; k < 3; ++k) m_triangles[tri.ref].st[k] = st[k];
         }
         const glm::dvec3 cross3 = glm::cross(glm::dvec3(tri.p[1] - tri.p[0]), glm::dvec3(tri.p[2] - tri.p[0]));
-        const double area3 = 0.5 * glm::length(cross3);
-        const glm::dvec3 normal3 = cross3 / std::max(2.0 * area3, 1e-300);
+        const double objectArea = 0.5 * glm::length(cross3);
+        const glm::dvec3 normal3 = cross3 / std::max(2.0 * objectArea, 1e-300);  // object space (sample positions)
+        // World m^2: a linear map L takes the area vector a to cof(L) a (areaMap).
+        const double area3 = 0.5 * glm::length(areaMap * cross3);
         total += area3;
         const glm::dvec2 e1 = g[1] - g[0], e2 = g[2] - g[0];
         const double cross2 = e1.x * e2.y - e1.y * e2.x, area2 = 0.5 * std::abs(cross2);
@@ -403,6 +406,10 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
                 ? mat.emission * imageMean(scene.textures[static_cast<size_t>(mat.emissionTexture)].image)
                 : mat.emission;
         const float pitch = obj.isDynamic() ? pm.m_dynamicElementSize : pm.m_elementSize;
+        // The object's transform (rigid animation times a fixed transform that may scale): element areas
+        // and the pitch are world metres, positions stay in object space (the body transform moves them).
+        const glm::dmat3 linear(glm::mat3(obj.worldFromObject(0.0f)));
+        const glm::dmat3 areaMap = glm::determinant(linear) * glm::transpose(glm::inverse(linear));
         std::vector<char> assigned(triCount, 0);
         std::vector<uint32_t> members;
         for (size_t seed = 0; seed < triCount; ++seed) {
@@ -479,8 +486,8 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
             q.p[1] = q.p[0] + width * U;
             q.p[3] = q.p[0] + height * V;
             q.p[2] = q.p[1] + height * V;
-            q.nu = texelsAlong(width, pitch);
-            q.nv = texelsAlong(height, pitch);
+            q.nu = texelsAlong(width * static_cast<float>(glm::length(linear * glm::dvec3(U))), pitch);
+            q.nv = texelsAlong(height * static_cast<float>(glm::length(linear * glm::dvec3(V))), pitch);
             if (pm.m_elements.size() + static_cast<size_t>(q.nu) * static_cast<size_t>(q.nv) > opt.maxElements)
                 return makeError("more than {} radiosity elements (object '{}'): raise elementSize (now {} m) or "
                                  "dynamicElementSize (now {} m)",
@@ -494,7 +501,7 @@ Expected<PatchModel> PatchModel::build(const Scene& scene, const PatchOptions& o
                 tris[k].ref = triBase + members[k];
             }
             // Element albedo: the material over the covered part of the cell (uv by the triangles).
-            pm.addChart(q, tris, [&](glm::vec2 uv) { return albedoAt(scene, mat, uv); });
+            pm.addChart(q, tris, [&](glm::vec2 uv) { return albedoAt(scene, mat, uv); }, areaMap);
         }
     }
 

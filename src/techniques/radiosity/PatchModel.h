@@ -22,6 +22,7 @@
 #include "core/Error.h"
 #include "scene/Scene.h"
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -39,11 +40,11 @@ namespace bounce::radiosity {
 constexpr double kAutoTargetElements = 1000.0;
 
 // The element pitch elementSize = 0 ("auto") stands for: sqrt(A / kAutoTargetElements), A the summed
-// area of the scene's (object-space) triangles, metres.
+// area of the scene's triangles in world space (the objects' transforms at t = 0), metres.
 float autoElementSize(const Scene& scene);
 
 struct PatchOptions {
-    float elementSize = 0.0f;         // metres between texel centres on static bodies; 0 = autoElementSize
+    float elementSize = 0.0f;         // world metres between texel centres on static bodies; 0 = autoElementSize
     float dynamicElementSize = 0.0f;  // the same on animated bodies; 0 = autoElementSize
     size_t maxElements = size_t(1) << 20;
 };
@@ -51,7 +52,7 @@ struct PatchOptions {
 struct Quad {
     glm::vec3 p[4];          // object-space corners at (s,t) = (0,0) (1,0) (1,1) (0,1): a rectangle
     glm::vec3 normal{0.0f};  // object space, unit, the front side
-    float area = 0.0f;       // m^2 of surface the chart covers (not the rectangle's)
+    float area = 0.0f;       // world m^2 of surface the chart covers (not the rectangle's)
     glm::vec3 emission{0.0f};  // W/(m^2 sr)
     uint32_t body = 0;       // object index, or objects + light index
     int nu = 2, nv = 2;      // texels per side
@@ -63,7 +64,7 @@ struct Quad {
 
 struct Element {
     glm::vec3 position{0.0f};  // object space
-    float area = 0.0f;         // m^2
+    float area = 0.0f;         // world m^2 (the object's transform applied: scaled objects)
     glm::vec3 albedo{0.0f};
     glm::vec3 emission{0.0f};  // W/(m^2 sr)
     uint32_t quad = 0;
@@ -120,8 +121,10 @@ private:
     };
     // Appends chart q (corners, normal, nu, nv, body, flags, emission set) made of `tris`: its elements
     // (cells clipped to the triangles, areas, centroids, albedo(uv) averaged over the covered part,
-    // ghosts), its area, and the triangles' (s, t).
-    void addChart(Quad q, const std::vector<ChartTriangle>& tris, const std::function<glm::vec3(glm::vec2)>& albedo);
+    // ghosts), its area, and the triangles' (s, t). areaMap: the cofactor matrix of the body's linear
+    // transform (object to world area vectors), so areas are world m^2 on scaled objects.
+    void addChart(Quad q, const std::vector<ChartTriangle>& tris, const std::function<glm::vec3(glm::vec2)>& albedo,
+                  const glm::dmat3& areaMap = glm::dmat3(1.0));
 
     std::vector<Quad> m_quads;
     std::vector<Element> m_elements;
