@@ -219,7 +219,7 @@ TEST_F(PortabilityFixesGpuTest, MultiresAtlasPastTheTextureSizeIsRefused) {
 }
 
 TEST_F(PortabilityFixesGpuTest, ComputeGatherGroupsWrapIntoA2dGridPastTheXLimit) {
-    // #5 (the stencilled gather's part): cell_args.comp asked for ceil(cells / 64) groups in x, past
+    // #5 (the stencilled gather's part): cell_args.comp (now common/list_args.comp) asked for ceil(cells / 64) groups in x, past
     // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] (65,535 in GL 4.5 and on llvmpipe) at 4K outputs. The groups
     // now wrap into rows of maxGroupsX(); with the limit lowered to 3 groups (192 cells) a 48^2 isr
     // frame (about 2,000 cells) uses a 3 x 11 grid and must give the same image as one row.

@@ -16,7 +16,7 @@ uniform ivec2 u_levelOrigins[16];
 uniform bool u_accumulate;
 
 void main() {
-    // Groups in rows of gl_NumWorkGroups.x (cell_args.comp's 2D grid past the x group limit).
+    // Groups in rows of gl_NumWorkGroups.x (list_args.comp's 2D grid past the x group limit).
     uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;
     if (i >= u_cellCount) return;
     uint entry = u_cells[i];

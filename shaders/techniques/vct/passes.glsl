@@ -30,12 +30,12 @@ layout(binding = BINDING_TEX_VCT_ALPHA) uniform sampler3D s_alpha;
 layout(binding = BINDING_TEX_VCT_VOLUME0) uniform sampler3D s_vol[12];
 
 layout(std430, binding = BINDING_SSBO_TECH0) coherent buffer ListIn {
-    uint in_count, in_instances, in_first, in_baseInstance;
+    uint in_count, in_unused0, in_unused1, in_unused2;  // words 1-3: free since the list is dispatched, not drawn
     uint in_capacity, in_pad0, in_pad1, in_pad2;
     uint in_voxels[];
 };
 layout(std430, binding = BINDING_SSBO_TECH2) coherent buffer ListOut {
-    uint out_count, out_instances, out_first, out_baseInstance;
+    uint out_count, out_unused0, out_unused1, out_unused2;
     uint out_capacity, out_pad0, out_pad1, out_pad2;
     uint out_voxels[];
 };

@@ -62,9 +62,9 @@ layout(binding = BINDING_IMG4, r32ui) uniform coherent uimage3D i_count;
 layout(binding = BINDING_IMG5, r8ui) uniform writeonly uimage3D i_binary;
 layout(binding = BINDING_IMG6, r32ui) uniform coherent uimage3D i_mutex;
 
-// Active-voxel list of level 0 (DrawArraysIndirectCommand head, then packed coordinates).
+// Active-voxel list of level 0 (head: count, three free words, capacity; then packed coordinates).
 layout(std430, binding = BINDING_SSBO_TECH0) coherent buffer ActiveList0 {
-    uint a_count, a_instances, a_first, a_baseInstance;
+    uint a_count, a_unused0, a_unused1, a_unused2;
     uint a_capacity, a_pad0, a_pad1, a_pad2;
     uint a_voxels[];
 };

@@ -4,6 +4,7 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 #include "gpu/DispatchGrid.h"
+#include "gpu/ListDispatch.h"
 
 #include <fmt/format.h>
 
@@ -33,8 +34,8 @@ int StencilledGather::maxGroupsX() {
 Expected<StencilledGather> StencilledGather::create() {
     StencilledGather g;
     BOUNCE_TRY(g.m_cellList, gl::Program::build({"nichols.cellList", {{GL_COMPUTE_SHADER, "techniques/nichols/cell_list.comp"}}}));
-    BOUNCE_TRY(g.m_cellArgs, gl::Program::build({"nichols.cellArgs", {{GL_COMPUTE_SHADER, "techniques/nichols/cell_args.comp"}}}));
-    g.m_dispatch = gl::Buffer::create("nichols.cellDispatch", 3 * sizeof(uint32_t));
+    BOUNCE_TRY(g.m_cellArgs, gl::ListDispatch::create());
+    g.m_dispatch = gl::ListDispatch::createArgs("nichols.cellDispatch");
     BOUNCE_TRY(g.m_eye, MinMaxPyramid::create());
     BOUNCE_TRY(g.m_buffer, MultiresBuffer::create());
     g.m_clearFbo = gl::Framebuffer::create("nichols.clear");
@@ -74,12 +75,7 @@ void StencilledGather::prepare(FrameContext& ctx, int eyeCoarsest, const Pyramid
         m_cellList.use();
         glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((size.y + 7) / 8), 1);
     }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    m_dispatch.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
-    m_cellArgs.set("u_maxGroupsX", static_cast<unsigned>(maxGroupsX()));
-    m_cellArgs.use();
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    m_cellArgs.writeArgs(m_cells, m_dispatch, gl::ListDispatch::kUnbounded, static_cast<uint32_t>(maxGroupsX()));
 }
 
 void StencilledGather::gather(gl::Program& program, int batches, const std::function<void(int)>& setBatch) {
@@ -94,12 +90,11 @@ void StencilledGather::gather(gl::Program& program, int batches, const std::func
     program.set("u_levelOrigins", origins);
     m_cells.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
     m_buffer->atlas().bindImage(BINDING_IMG0, GL_READ_WRITE);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatch.id());
     for (int b = 0; b < batches; ++b) {
         if (setBatch) setBatch(b);
         program.set("u_accumulate", b > 0 ? 1 : 0);
         program.use();
-        glDispatchComputeIndirect(0);
+        gl::ListDispatch::dispatch(m_dispatch);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         // llvmpipe queues work until a flush: one unit of work per batch, as for the stencilled draws.
         if (batches > 1) glFlush();

@@ -6,6 +6,7 @@
 // the indirect target. The techniques differ only in what their gather program reads (a VPL cache or
 // a VPL tree), which they bind before gather().
 #include "core/DeviceProfile.h"
+#include "gpu/ListDispatch.h"
 #include "techniques/nichols/MultiresBuffer.h"
 
 #include <optional>
@@ -34,7 +35,7 @@ public:
     // test sets s_maxGroupsXForTests (> 0) to see the grid wrap at llvmpipe's sizes (issue 29 #5).
     static int maxGroupsX();
     static int s_maxGroupsXForTests;
-    // gatherPass=compute: the last frame's indirect dispatch size (cell_args.comp's output), read back; tests.
+    // gatherPass=compute: the last frame's indirect dispatch size (common/list_args.comp's output), read back; tests.
     const gl::Buffer& dispatchArgs() const { return m_dispatch; }
 
     // Timers "min-max-mipmap" and "stencil-setup": builds the eye pyramid down to eyeCoarsest and
@@ -66,7 +67,8 @@ private:
     std::optional<MinMaxPyramid> m_eye;
     std::optional<MultiresBuffer> m_buffer;
     gl::Framebuffer m_clearFbo;
-    gl::Program m_cellList, m_cellArgs;  // GatherPass::Compute: the list and its dispatch size
+    gl::Program m_cellList;  // GatherPass::Compute: the list
+    gl::ListDispatch m_cellArgs;  // and its dispatch size
     gl::Buffer m_cells, m_dispatch;
     GatherPass m_pass = GatherPass::Stencil;
     int m_levels = 0;  // levels of the last prepare()

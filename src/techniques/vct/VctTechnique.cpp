@@ -24,7 +24,7 @@
 //  3. "mipmap": level by level, the opacity-weighted isotropic mip (every format: its opacity is the
 //     SH formats' alpha volume), then the format's own filter: directional anisotropic, or the SH
 //     face projection of Eq. 5.9 with the division by pi the thesis omits. Sparse mode processes only
-//     the active-voxel lists (point lists drawn indirectly, rasterizer off); dense mode every voxel.
+//     the active-voxel lists (compute jobs dispatched indirectly from the lists' counts); dense mode every voxel.
 //  4. "diffuse-ao": six 60-degree cones per pixel (Eq. 6.8/6.9), generic (Fig. B.4) or specialised
 //     (Fig. B.5) tracer; "specular": one cone about the mirror direction, aperture from roughness.
 //  5. "shadow" (coneShadows on): the pixel's direct light, shadowed by one cone per light through the
@@ -95,8 +95,10 @@ int debugIndex(std::string_view s) {
     return 0;
 }
 
+// An active-voxel list's head (passes.glsl ListIn/ListOut): the append count, three free words, the
+// capacity; the packed voxels follow.
 struct ListHead {
-    uint32_t count, instances, first, baseInstance;
+    uint32_t count, unused0, unused1, unused2;
     uint32_t capacity, pad0, pad1, pad2;
 };
 
@@ -180,7 +182,7 @@ Expected<void> VctTechnique::buildPrograms() {
         const std::string label = fmt::format("vct.pass{}.{}", id, sparse ? "sparse" : "dense");
         auto d = with({{"VCT_PASS", std::to_string(id)}, {"VCT_SPARSE", sparse ? "1" : "0"}});
         if (sparse) {
-            BOUNCE_TRY(out, gl::Program::build({label, {{GL_VERTEX_SHADER, "techniques/vct/pass.vert"}}, d}));
+            BOUNCE_TRY(out, gl::Program::build({label, {{GL_COMPUTE_SHADER, "techniques/vct/pass_list.comp"}}, d}));
         } else {
             BOUNCE_TRY(out, gl::Program::build({label, {{GL_COMPUTE_SHADER, "techniques/vct/pass.comp"}}, d}));
         }
@@ -189,6 +191,7 @@ Expected<void> VctTechnique::buildPrograms() {
     BOUNCE_TRY_VOID(pass(1, false, m_postDense));
     BOUNCE_TRY_VOID(pass(2, false, m_mipIsoDense));
     if (m_sparseMip) {
+        BOUNCE_TRY(m_listDispatch, gl::ListDispatch::create());
         BOUNCE_TRY_VOID(pass(1, true, m_postSparse));
         BOUNCE_TRY_VOID(pass(2, true, m_mipIsoSparse));
         BOUNCE_TRY_VOID(pass(5, true, m_clearSparse));
@@ -342,6 +345,7 @@ Expected<void> VctTechnique::allocate(const SetupContext&) {
         ActiveList list;
         list.capacity = static_cast<uint32_t>(activeListCapacity(N, l));
         list.buffer = gl::Buffer::create(fmt::format("vct.activeList{}", l), sizeof(ListHead) + list.capacity * sizeof(uint32_t));
+        list.args = gl::ListDispatch::createArgs(fmt::format("vct.activeList{}.dispatch", l));
         m_lists.push_back(std::move(list));
     }
     m_sparseActive = m_sparseMip;
@@ -421,7 +425,7 @@ void VctTechnique::clearVolumes() {
     }
     if (m_sparseActive) {
         for (ActiveList& list : m_lists) {
-            const ListHead head{0u, 1u, 0u, 0u, list.capacity, 0u, 0u, 0u};
+            const ListHead head{0u, 0u, 0u, 0u, list.capacity, 0u, 0u, 0u};
             list.buffer.upload(0, sizeof(head), &head);
         }
     }
@@ -435,10 +439,8 @@ void VctTechnique::clearListedVoxels() {
     const int storage = storageId();
     const GLenum volumeFormat = storage == VCT_STORAGE_SH_F32 ? GL_R32F : storage == VCT_STORAGE_SH_U8 ? GL_RGBA8_SNORM : GL_RGBA8;
     constexpr int kVolumesPerPass = 6;  // IMG2..IMG7: with the iso and mutex images, the 8 units GL 4.5 guarantees
-    m_clearSparse.use();
-    glEnable(GL_RASTERIZER_DISCARD);
-    gl::Context::current()->bindEmptyVertexArray();
     for (int l = 0; l < m_levels; ++l) {
+        m_listDispatch.writeArgs(m_lists[l].buffer, m_lists[l].args, m_lists[l].capacity);
         m_lists[l].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_lists[l].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);  // declared, unused
         glBindImageTexture(BINDING_IMG0, m_iso.id(), l, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
@@ -453,12 +455,10 @@ void VctTechnique::clearListedVoxels() {
             }
             m_clearSparse.set("u_level", l);
             m_clearSparse.set("u_volumeCount", std::max(n, 0));
-            glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_lists[l].buffer.id());
-            glDrawArraysIndirect(GL_POINTS, nullptr);
+            m_clearSparse.use();
+            gl::ListDispatch::dispatch(m_lists[l].args);
         }
     }
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    glDisable(GL_RASTERIZER_DISCARD);
     // The zeros must land before voxelization's atomics and the list heads' reset (a buffer upload).
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -533,16 +533,13 @@ void VctTechnique::voxelize(FrameContext& ctx) {
 
 void VctTechnique::runPass(gl::Program& dense, gl::Program& sparse, bool sparseMode, int level, int listIn, int listOut) {
     if (sparseMode) {
+        // One invocation per entry of the input list (gpu/ListDispatch.h: its count never leaves the GPU).
+        m_listDispatch.writeArgs(m_lists[listIn].buffer, m_lists[listIn].args, m_lists[listIn].capacity);
         m_lists[listIn].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
         m_lists[listOut].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
         sparse.set("u_level", level);
         sparse.use();
-        glEnable(GL_RASTERIZER_DISCARD);
-        gl::Context::current()->bindEmptyVertexArray();
-        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_lists[listIn].buffer.id());
-        glDrawArraysIndirect(GL_POINTS, nullptr);
-        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-        glDisable(GL_RASTERIZER_DISCARD);
+        gl::ListDispatch::dispatch(m_lists[listIn].args);
     } else {
         // Unused by the dense path but declared: keep valid buffers bound.
         m_lists[0].buffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);

@@ -2,6 +2,7 @@
 // `vct`: voxel cone tracing with hybrid voxelization and spherical-harmonics radiance (Rauwendaal
 // 2013). See VctTechnique.cpp for the passes and docs/techniques/vct.md for settings and deviations.
 #include "gpu/GpuInfo.h"
+#include "gpu/ListDispatch.h"
 #include "techniques/Technique.h"
 #include "techniques/vct/RadianceRange.h"
 #include "techniques/vct/vct_shared.h"
@@ -63,7 +64,8 @@ public:
 
 private:
     struct ActiveList {
-        gl::Buffer buffer;  // DrawArraysIndirectCommand, capacity, then packed voxels
+        gl::Buffer buffer;  // ListHead (count, capacity), then packed voxels
+        gl::Buffer args;    // the passes' DispatchIndirectCommand over it (gpu/ListDispatch.h)
         uint32_t capacity = 0;
     };
     int storageId() const;
@@ -136,6 +138,7 @@ private:
     gl::Framebuffer m_voxelFbo, m_traceFbo;
     gl::Program m_voxTriangle, m_voxHybrid, m_voxFragment, m_voxLarge;
     gl::Program m_postDense, m_postSparse, m_mipIsoDense, m_mipIsoSparse, m_mipDense, m_mipSparse, m_clearSparse;
+    gl::ListDispatch m_listDispatch;  // the sparse passes' dispatch sizes from the lists' counts
     gl::Program m_traceDiffuse, m_traceSpecular, m_emission, m_directCone;
     const render::SceneGpu* m_sceneGpu = nullptr;
     std::vector<vct::RangeSample> m_rangeSamples;  // the automatic radiance range's surface samples
