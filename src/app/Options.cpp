@@ -61,7 +61,9 @@ bool route(const std::string& key, const std::string& value, std::string_view te
 
 }  // namespace
 
-Expected<void> checkSceneSetting(const std::string& key, const std::string& value) {
+Expected<void> checkSceneSetting(const std::string& profileKey, const std::string& value) {
+    BOUNCE_TRY(const ProfileKey split, splitProfileKey(profileKey));
+    const std::string& key = split.key;
     const size_t dot = key.find('.');
     if (dot == std::string::npos) return makeError("not of the form technique.setting");
     const std::string owner = key.substr(0, dot), name = key.substr(dot + 1);
@@ -85,7 +87,15 @@ Expected<void> applyAllSettings(const Scene& scene, Technique& technique, render
         applyProfileDefaults(renderSettings, *profile);
     }
     std::map<std::string, std::string> renderer, own;
-    for (const auto& [key, value] : scene.settings) route(key, value, technique.name(), renderer, own);
+    // The scene's plain defaults, then those for this run's profile over them ("key@llvmpipe"); without
+    // a profile (a check before the context exists) the plain ones only.
+    std::vector<std::pair<std::string, std::string>> forProfile;
+    for (const auto& [key, value] : scene.settings) {
+        BOUNCE_TRY(const ProfileKey split, splitProfileKey(key));
+        if (!split.profile) route(key, value, technique.name(), renderer, own);
+        else if (profile && *split.profile == *profile) forProfile.emplace_back(split.key, value);
+    }
+    for (const auto& [key, value] : forProfile) route(key, value, technique.name(), renderer, own);
     BOUNCE_TRY(auto cli, parseAssignments(cliSettings, "--set"));
     for (const auto& [key, value] : cli)
         if (!route(key, value, technique.name(), renderer, own))

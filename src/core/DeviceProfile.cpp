@@ -10,6 +10,13 @@ Expected<DeviceProfile> parseProfile(std::string_view text, std::string_view sou
     return makeError("{}='{}' is not a device profile (llvmpipe or gpu)", source, text);
 }
 
+Expected<ProfileKey> splitProfileKey(const std::string& key) {
+    const size_t at = key.rfind('@');
+    if (at == std::string::npos) return ProfileKey{key, std::nullopt};
+    BOUNCE_TRY(auto profile, parseProfile(std::string_view(key).substr(at + 1), "setting '" + key + "': the suffix @profile"));
+    return ProfileKey{key.substr(0, at), profile};
+}
+
 DeviceProfile profileOfRenderer(std::string_view renderer) {
     // Mesa's software rasterisers name themselves in GL_RENDERER ("llvmpipe (LLVM 15.0.6, 256 bits)",
     // "softpipe", "Software Rasterizer"); zink over lavapipe says "zink (llvmpipe ...)" or "lavapipe".

@@ -7,6 +7,7 @@
 // GL-free (core): settings declare per-profile defaults (core/Settings.h), docs/gpu.md "Device profile".
 #include "core/Error.h"
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -21,6 +22,15 @@ Expected<DeviceProfile> parseProfile(std::string_view text, std::string_view sou
 DeviceProfile profileOfRenderer(std::string_view renderer);
 // profileOfRenderer unless `override` (BOUNCE_PROFILE's value) is non-empty, which must then parse.
 Expected<DeviceProfile> resolveProfile(std::string_view renderer, std::string_view override);
+
+// A scene's default setting for one profile only: "technique.setting@llvmpipe" (or "@gpu") applies on
+// that profile, over the plain "technique.setting" (docs/scene.md "Settings"). Splits `key` into the
+// plain key and its profile (none without a suffix); an unknown suffix is an error naming it.
+struct ProfileKey {
+    std::string key;
+    std::optional<DeviceProfile> profile;
+};
+Expected<ProfileKey> splitProfileKey(const std::string& key);
 
 // A setting's default per profile (core/Settings.h: SettingsVisitor::field with a PerProfile).
 template <class T>

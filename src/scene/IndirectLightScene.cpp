@@ -40,6 +40,8 @@ constexpr float kWindowCentreZ = 1.0f;  // metres
 // `bounce reference`: 0.48 over the default view, docs/scene.md "indirect-light"). Techniques that stop
 // after one bounce see only about a fifth of that (measured 0.093 with `--bounces 1`).
 constexpr glm::vec3 kWindowRadiance{3.0f};  // W/(m^2 sr)
+// Radiosity's element pitch on a GPU, metres, as setting text (the scene's defaults are text).
+constexpr const char* kGpuElementSize = "0.1";
 
 // The rotating box: a 0.5 m cube on the left half of the floor, turning once every 8 s about its vertical
 // axis. Its half-diagonal (0.35 m) keeps it 0.85 m from the left wall and 1.25 m from the back wall.
@@ -134,11 +136,15 @@ Expected<Scene> buildIndirectLight(const SceneParams&) {
     s.camera.verticalFov = glm::radians(kCameraFovDegrees);
     s.camera.nearPlane = 0.01f;  // metres; the front wall is 0.1 m behind the camera
     s.camera.farPlane = 10.0f;   // metres; beyond the room's 6.2 m diagonal
-    // Hemicube radiosity: a 4 m room at the default 0.05 m pitch has 31,000 elements (six minutes per
-    // gather frame on llvmpipe); 0.25 m keeps ~1,300. Albedo 0.9 needs 20+ bounces (thesis sec. 5.1);
-    // 16 Gauss-Seidel sweeps leave the gather method a little dark, as the thesis's capped gather was.
-    for (const char* t : {"radiosity-gather", "radiosity-pr", "radiosity-incremental", "radiosity-cross"})
-        s.settings[std::string(t) + ".elementSize"] = "0.25";
+    // Hemicube radiosity's element pitch per device profile (issue 29 #20): on llvmpipe 0.25 m (~1,300
+    // elements, as before the automatic size, which gives 0.27 m here); on a GPU kGpuElementSize (~7,500
+    // elements), of the order of the thesis's ~10,000 static elements (sec. 5.1's Cornell boxes). Albedo 0.9 needs 20+ bounces
+    // (thesis sec. 5.1); 16 Gauss-Seidel sweeps leave the gather method a little dark, as the thesis's
+    // capped gather was.
+    for (const char* t : {"radiosity-gather", "radiosity-pr", "radiosity-incremental", "radiosity-cross"}) {
+        s.settings[std::string(t) + ".elementSize@llvmpipe"] = "0.25";
+        s.settings[std::string(t) + ".elementSize@gpu"] = kGpuElementSize;
+    }
     s.settings["radiosity-gather.bounces"] = "16";
     return s;
 }

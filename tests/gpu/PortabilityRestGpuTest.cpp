@@ -5,7 +5,10 @@
 // llvmpipe by switching the shared context's profile (gl::Context::setProfileForTests).
 #include "GpuTestSupport.h"
 #include "NicholsTestSupport.h"
+#include "app/Options.h"
 #include "core/Settings.h"
+#include "render/RenderSettings.h"
+#include "scene/SceneLoader.h"
 #include "gpu/ShaderLimits.h"
 #include "metrics/ErrorMetrics.h"
 #include "techniques/Registry.h"
@@ -164,4 +167,45 @@ TEST_F(PortabilityRestGpuTest, ContextsAskForResetNotificationAndReportAResetInO
         EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
     EXPECT_NE(gl::resetStatusMessage(GL_GUILTY_CONTEXT_RESET).find("GUILTY"), std::string::npos);
+}
+
+TEST_F(PortabilityRestGpuTest, SceneDefaultsCanNameADeviceProfile) {
+    // #20, the scenes' half: a scene setting "technique.setting@profile" applies on that profile only,
+    // over the plain key. indirect-light's radiosity pitch: 0.25 m on llvmpipe (as before), 0.1 m on a
+    // GPU; without a profile (the check before a context exists) neither, so the automatic size.
+    auto scene = loadScene("indirect-light");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const auto pitchOn = [&](std::optional<DeviceProfile> profile) {
+        auto t = createTechnique("radiosity-pr");
+        EXPECT_TRUE(t.ok());
+        render::RenderSettings rs;
+        auto applied = applyAllSettings(*scene, **t, rs, {}, profile);
+        EXPECT_TRUE(applied.ok()) << applied.error().message;
+        return settingsToJson(**t)["elementSize"].get<double>();
+    };
+    EXPECT_NEAR(pitchOn(DeviceProfile::Llvmpipe), 0.25, 1e-6);
+    EXPECT_NEAR(pitchOn(DeviceProfile::Gpu), 0.1, 1e-6);
+    EXPECT_NEAR(pitchOn(std::nullopt), 0.0, 1e-6);
+    // The command line still wins; a plain scene key sits under the profile's.
+    {
+        Scene s = *scene;
+        s.settings["radiosity-pr.elementSize"] = "0.5";
+        auto t = createTechnique("radiosity-pr");
+        render::RenderSettings rs;
+        ASSERT_TRUE(applyAllSettings(s, **t, rs, {}, DeviceProfile::Gpu).ok());
+        EXPECT_NEAR(settingsToJson(**t)["elementSize"].get<double>(), 0.1, 1e-6);
+        ASSERT_TRUE(applyAllSettings(s, **t, rs, {"elementSize=0.3"}, DeviceProfile::Gpu).ok());
+        EXPECT_NEAR(settingsToJson(**t)["elementSize"].get<double>(), 0.3, 1e-6);
+    }
+    // An unknown profile is a one-line error naming the key, from the run and from a scene file's check.
+    Scene bad = *scene;
+    bad.settings["radiosity-pr.elementSize@tpu"] = "0.1";
+    auto t = createTechnique("radiosity-pr");
+    render::RenderSettings rs;
+    auto refused = applyAllSettings(bad, **t, rs, {}, DeviceProfile::Gpu);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("radiosity-pr.elementSize@tpu"), std::string::npos) << refused.error().message;
+    EXPECT_FALSE(checkSceneSetting("radiosity-pr.elementSize@tpu", "0.1").ok());
+    EXPECT_TRUE(checkSceneSetting("radiosity-pr.elementSize@gpu", "0.1").ok());
+    EXPECT_FALSE(checkSceneSetting("radiosity-pr.elementSize@gpu", "-1").ok());
 }

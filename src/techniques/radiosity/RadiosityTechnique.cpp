@@ -73,7 +73,7 @@ void RadiosityTechnique::debugViews(std::vector<DebugView>& out) const {
 }
 
 void RadiosityTechnique::visitSettings(SettingsVisitor& v) {
-    v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given); 0 = auto: sqrt(scene surface area / 1000), printed and in the run record's counters", 0.0f, 100.0f);
+    v.field("elementSize", m_elementSize, "metres between element (texel) centres on static surfaces (thesis: not given); 0 = auto: sqrt(scene surface area / 1000), logged and in the run record's `derived`", 0.0f, 100.0f);
     v.field("dynamicElementSize", m_dynamicElementSize, "metres between element centres on animated objects; 0 = auto, as elementSize", 0.0f, 100.0f);
     v.field("hemicubeSize", m_options.hemicubeSize, "hemicube top-face pixels per side; side faces are half as high (thesis: 64)", 4, 512);
     v.field("randomRotation", m_options.randomRotation, "rotate each hemicube about its normal by a hash of its position (thesis sec. 4.2)");
