@@ -66,6 +66,7 @@ Expected<CpuJobCommon> checkCpuJobArgs(const CpuJobArgs& args, const char* comma
 struct ReferenceArgs : CpuJobArgs {
     uint32_t spp = 256;
     std::string variance;  // --variance: the per-pixel variance image (.exr) beside the image
+    std::string firstReflection = "cosine";  // --first-reflection: cosine | vct-cones (a diagnostic)
 };
 Expected<ReferenceJob> referenceJobFromArgs(const ReferenceArgs& args);
 

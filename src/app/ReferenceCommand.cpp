@@ -61,6 +61,10 @@ void registerReferenceCommand(CLI::App& root, CommandAction& action) {
                       "Use only the Lambert lobe after the first reflection",
                       "Stop after the last pass that fits in SEC seconds (0 = no limit); the record keeps the spp reached"});
     cmd->add_option("--spp", args->spp, "Samples (camera paths) per pixel")->capture_default_str();
+    cmd->add_option("--first-reflection", args->firstReflection,
+                    "cosine: the cosine lobe (the reference); vct-cones: a diagnostic, vct's six 60-degree cones and "
+                    "weights over the exact incident light (docs/techniques/vct.md, \"The six cones' own bias\")")
+        ->capture_default_str();
     cmd->add_option("--variance", args->variance,
                     "Also write the per-pixel variance of the image (.exr, needs --stats): `bounce compare` reads it "
                     "to print the reference's noise floor of every metric");

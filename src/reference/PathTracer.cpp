@@ -8,6 +8,8 @@
 #include "reference/Sampling.h"
 #include "reference/TextureLookup.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -28,6 +30,37 @@
 namespace bounce {
 
 namespace {
+
+// PathTracerSettings::firstReflectionCones: a direction from the cone mixture (cone k with probability
+// W_k / sum W, uniform within it) in the vct tracer's frame about the shading normal n, and its pdf
+// (sum over the cones holding it of (W_k / sum W) / Omega_k, per steradian).
+glm::vec3 sampleQuadratureCones(const std::vector<PathTracerSettings::QuadratureCone>& cones, glm::vec3 n, Rng& rng,
+                                float& pdf) {
+    float total = 0.0f;
+    for (const auto& c : cones) total += c.weight;
+    float pick = rng.next() * total;
+    size_t k = 0;
+    while (k + 1 < cones.size() && pick >= cones[k].weight) pick -= cones[k++].weight;
+    const glm::vec3 helper = std::abs(n.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 tx = glm::normalize(glm::cross(helper, n)), tz = glm::cross(tx, n);
+    const auto toWorld = [&](glm::vec3 d) { return glm::normalize(tx * d.x + n * d.y + tz * d.z); };
+    // Uniform in cone k: cos theta uniform on [cos alpha, 1] about its axis.
+    const glm::vec3 axis = toWorld(cones[k].direction);
+    const float cosAlpha = std::cos(cones[k].halfAngle);
+    const float cosTheta = 1.0f - rng.next() * (1.0f - cosAlpha);
+    const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+    const float phi = 2.0f * glm::pi<float>() * rng.next();
+    const Frame around(axis);
+    const glm::vec3 wi = around.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    pdf = 0.0f;
+    for (const auto& c : cones) {
+        const float solidAngle = 2.0f * glm::pi<float>() * (1.0f - std::cos(c.halfAngle));
+        if (glm::dot(wi, toWorld(c.direction)) >= std::cos(c.halfAngle) && solidAngle > 0.0f)
+            pdf += c.weight / total / solidAngle;
+    }
+    return wi;
+}
+
 
 using Clock = std::chrono::steady_clock;
 
@@ -296,7 +329,10 @@ PathTracer::Step PathTracer::scatter(PathState& path, const HitRecord& hit, Shad
     }
 
     glm::vec3 wi;
-    if (lambert) {
+    if (lambert && vertex == 1 && !m_settings.firstReflectionCones.empty()) {
+        wi = sampleQuadratureCones(m_settings.firstReflectionCones, ns, rng, path.bsdfPdf);
+        path.throughput *= albedo;  // the quadrature's weight: (albedo / pi) sum W_k 1_k / Omega_k over its pdf
+    } else if (lambert) {
         const glm::vec3 local = cosineHemisphere(rng);
         wi = frame.toWorld(local);
         path.throughput *= albedo;  // (albedo / pi) cos / (cos / pi)
@@ -355,6 +391,8 @@ bool PathTracer::loadKernelLane(lambert::Lanes& L, int i) const {
     const uint32_t primId = L.primId[i];
     const int reflections = L.reflections[i];
     if (!(k.shades || (k.shadesDiffuseOnly && reflections + 1 >= 2))) return false;
+    // The cone quadrature's first reflection is drawn by scatter() (the kernel samples the cosine lobe).
+    if (reflections == 0 && !m_settings.firstReflectionCones.empty()) return false;
     const glm::vec3 ng = k.faceNormals[primId];
     // A camera ray crossing a culled back face is traced on by scatter().
     if (reflections == 0 && !k.twoSided && !(glm::dot(L.direction.at(i), ng) < 0.0f)) return false;

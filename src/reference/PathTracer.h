@@ -50,6 +50,19 @@ struct PathTracerSettings {
     // Shade untextured Lambertian hits lane-parallel (SIMD). The image is bit-identical
     // either way; false keeps every lane on the scalar code (tests compare the two).
     bool vectorized = true;
+    // Diagnostic (docs/techniques/vct.md "The six cones' own bias"): when not empty, the first
+    // reflection draws its direction from these cones instead of the cosine lobe (cone k with
+    // probability weight_k / sum of weights, uniformly within it) and keeps the weight albedo, so the
+    // image is the cone quadrature rho/pi sum_k W_k mean_k(L) of the exact incident radiance: what a
+    // cone tracer with this cone set gives without any voxel error (sum W_k = pi: exact in a uniform
+    // field). Directions are in the vct tracer's frame: normal +Y, x = normalize(cross(helper, n)),
+    // z = cross(x, n), helper +Y unless |n.y| >= 0.99, then +X (trace.frag). Lambertian hits only.
+    struct QuadratureCone {
+        glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit, normal frame
+        float halfAngle = 0.0f;                  // radians
+        float weight = 0.0f;                     // W_k
+    };
+    std::vector<QuadratureCone> firstReflectionCones;
 
     static constexpr int kUnbounded = -1;
 };

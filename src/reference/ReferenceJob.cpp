@@ -27,6 +27,13 @@ nlohmann::ordered_json referenceRunRecord(const Scene& scene, const ReferenceJob
     const PathTracerSettings& s = job.settings;
     nlohmann::ordered_json settings = {{"width", s.width}, {"height", s.height}, {"spp", s.samplesPerPixel}};
     settings.update(jobScopeRecord(scene, s));
+    // The diagnostic cone quadrature is no reference: its record says so (its cones, W_k).
+    if (!s.firstReflectionCones.empty()) {
+        nlohmann::ordered_json cones = nlohmann::ordered_json::array();
+        for (const auto& c : s.firstReflectionCones)
+            cones.push_back({{"direction", {c.direction.x, c.direction.y, c.direction.z}}, {"halfAngle", c.halfAngle}, {"weight", c.weight}});
+        settings["firstReflectionCones"] = cones;
+    }
     nlohmann::ordered_json record = {
         {"kind", "reference"},
         {"scene", jobSceneRecord(scene, job.scene, job.sceneParams)},
