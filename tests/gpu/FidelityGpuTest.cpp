@@ -14,6 +14,7 @@
 #include "NicholsTestSupport.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/PathTracer.h"
+#include "techniques/vct/ConeSet.h"
 #include "techniques/Registry.h"
 
 #include <cstdio>
@@ -62,6 +63,10 @@ struct KnownBias {
     double tolerance;   // how far the measurement may move (reference noise, llvmpipe vs GPU filtering)
     bool addsLight;     // the method adds light where the reference is dark: relMSE may exceed no-GI's
     const char* why;    // the cause, derived in the doc page named
+    // vct: `energy` is the ideal quadrature of the six cones against the reference (the method's own
+    // bias, derived by the path tracer's cone quadrature: vct.md "The six cones' own bias"), and the
+    // technique is held within +-kEnergyTolerance of that quadrature's energy instead of the reference's.
+    bool againstConeQuadrature = false;
 };
 
 // (technique, scene) -> the measured bias of the technique's own method.
@@ -81,10 +86,13 @@ const std::map<std::pair<std::string, std::string>, KnownBias>& knownBiases() {
         {{"isr", "cornell-box-area"}, {1.15, 0.05, false, "no indirect visibility (rsm.md)"}},
         {{"isr", "atrium"}, {1.19, 0.05, false, "no indirect visibility (rsm.md)"}},
         {{"hisr", "atrium"}, {1.18, 0.05, false, "no indirect visibility (rsm.md)"}},
-        // vct: the 2 cm wall is a third of a voxel, so both rooms' light shares its voxels; six 60-degree
-        // cones integrate a small bright pool seen at grazing angles poorly (vct.md, "Where the light goes").
+        // vct: the 2 cm wall is a third of a voxel, so both rooms' light shares its voxels (vct.md, "Where
+        // the light goes"). In the furnished room the six cones' own quadrature of the exact light holds
+        // 0.81 of it (light between the cones is lost; measured 0.804 at 64^2, 256 spp; bound 0.03 for the
+        // reference noise of both images and the cones' frame turning with the normal): vct
+        // is held within 15 % of that (0.89 of it at 128^2, record vct-cone-quadrature-2026-12-06).
         {{"vct", "two-rooms"}, {1.17, 0.06, false, "thin-wall leak (vct.md)"}},
-        {{"vct", "furnished-room"}, {0.72, 0.06, false, "six 60-degree cones on a small bright pool (vct.md)"}},
+        {{"vct", "furnished-room"}, {0.81, 0.03, false, "the six cones' quadrature (vct.md)", true}},
         // iir: a textured area light is one cosine spot at its centre with the texture's mean radiance
         // (the paper's crude approximation, iir.md "Primary lights").
         {{"iir", "area-screen"}, {0.80, 0.06, false, "area light as one cosine spot (iir.md)"}},
@@ -100,12 +108,18 @@ double meanOf(const Image& img) {
 
 // One reference per (scene, scope, frame), shared by every technique's test. The frame is the one the
 // technique's image shows (its last): in an animated scene the light or the objects have moved by then.
-const Image& reference(const std::string& sceneName, const Scene& scene, const ReferenceScope& scope, uint32_t frame) {
-    static std::map<std::tuple<std::string, int, bool, bool, uint32_t>, Image> cache;
-    const auto key = std::make_tuple(sceneName, scope.bounces, scope.indirectOnly, scope.diffuseOnly, frame);
+// coneQuadrature: the first reflection by vct's six cones instead of the cosine lobe
+// (PathTracerSettings::firstReflectionCones).
+const Image& reference(const std::string& sceneName, const Scene& scene, const ReferenceScope& scope, uint32_t frame,
+                       bool coneQuadrature = false) {
+    static std::map<std::tuple<std::string, int, bool, bool, uint32_t, bool>, Image> cache;
+    const auto key = std::make_tuple(sceneName, scope.bounces, scope.indirectOnly, scope.diffuseOnly, frame, coneQuadrature);
     auto it = cache.find(key);
     if (it != cache.end()) return it->second;
     PathTracerSettings pts;
+    if (coneQuadrature)
+        for (size_t k = 0; k < vct::kDiffuseConeDirections.size(); ++k)
+            pts.firstReflectionCones.push_back({vct::kDiffuseConeDirections[k], 0.5f * vct::kDiffuseConeAperture, vct::kDiffuseConeWeights[k]});
     pts.width = pts.height = kSize;
     pts.samplesPerPixel = kReferenceSpp;
     pts.bounces = scope.bounces;
@@ -159,7 +173,14 @@ TEST_P(FidelityGpuTest, DefaultsHoldTheReferenceScopesLightOnEveryBuiltinScene) 
         std::printf("fidelity %-22s %-22s energy %.3f relMSE %.4f (no GI %.4f)\n", technique.c_str(), s.name.c_str(), energy,
                     m->relMse, m0->relMse);
         const auto bias = knownBiases().find({technique, s.name});
-        if (bias != knownBiases().end()) {
+        if (bias != knownBiases().end() && bias->second.againstConeQuadrature) {
+            const Image& quadrature = reference(s.name, *scene, info->scope, last, true);
+            const double own = meanOf(quadrature) / meanOf(ref), vsOwn = meanOf(img) / meanOf(quadrature);
+            std::printf("fidelity %-22s %-22s the cones' quadrature %.3f of the reference; the technique %.3f of it\n",
+                        technique.c_str(), s.name.c_str(), own, vsOwn);
+            EXPECT_NEAR(own, bias->second.energy, bias->second.tolerance) << s.name << ": " << bias->second.why;
+            EXPECT_NEAR(vsOwn, 1.0, kEnergyTolerance) << technique << " on " << s.name << " against its cones' quadrature";
+        } else if (bias != knownBiases().end()) {
             EXPECT_NEAR(energy, bias->second.energy, bias->second.tolerance) << technique << " on " << s.name << ": " << bias->second.why;
         } else {
             EXPECT_NEAR(energy, 1.0, kEnergyTolerance) << technique << " on " << s.name;
