@@ -5,8 +5,8 @@ VPL) with and without `vplVisibility` (a voxel march per receiver-VPL pair, beyo
 the defaults of isr / hisr, against the one-bounce reference, on the built-in scenes where the RSM
 family's energy leaves +-15 % (bench/fidelity/run.py).
 
-Usage: bench/fidelity/visibility.py [BOUNCE] [--size N] [--spp N]      (any Python 3)
-Writes bench/results/rsm-visibility-<date>.json; docs/techniques/rsm.md quotes it.
+Usage: bench/fidelity/visibility.py [BOUNCE] [--size N] [--spp N] [--scenes a,b] [--name NAME]   (any Python 3)
+Writes bench/results/<NAME>-<date>.json (NAME defaults to rsm-visibility); docs/techniques/rsm.md quotes it.
 """
 import json
 import os
@@ -19,7 +19,7 @@ sys.path.insert(0, os.path.join(ROOT, "bench"))
 from cli import option, rel  # noqa: E402
 from record import new_record, write_record  # noqa: E402
 
-SCENES = ["cornell-box-area", "atrium", "furnished-room"]
+SCENES = ["cornell-box-area", "atrium", "furnished-room", "courtyard"]
 CASES = [
     ("rsm converged", "rsm", {"vplGrid": 128}),
     ("rsm converged + vplVisibility", "rsm", {"vplGrid": 128, "vplVisibility": "true"}),
@@ -33,11 +33,13 @@ def main():
     args = sys.argv[1:]
     size = option(args, "--size", 128)
     spp = option(args, "--spp", 1024)
+    only = option(args, "--scenes", "", str)
+    name = option(args, "--name", "rsm-visibility", str)
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
-    record = new_record("rsm-visibility", " ".join(["bench/fidelity/visibility.py"] + sys.argv[1:]), bounce)
+    record = new_record(name, " ".join(["bench/fidelity/visibility.py"] + sys.argv[1:]), bounce)
     record.update({"size": size, "spp": spp, "results": {}})
     with tempfile.TemporaryDirectory() as tmp:
-        for scene in SCENES:
+        for scene in [s for s in SCENES if not only or s in only.split(",")]:
             ref = os.path.join(tmp, "ref.exr")
             cmd = [bounce, "reference", "--scene", scene, "--size", f"{size}x{size}", "--spp", str(spp), "--bounces", "1",
                    "--indirect-only", "--out", ref]
