@@ -61,7 +61,6 @@ glm::vec3 sampleQuadratureCones(const std::vector<PathTracerSettings::Quadrature
     return wi;
 }
 
-
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
