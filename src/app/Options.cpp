@@ -62,8 +62,10 @@ bool route(const std::string& key, const std::string& value, std::string_view te
 }  // namespace
 
 Expected<void> checkSceneSetting(const std::string& profileKey, const std::string& value) {
-    BOUNCE_TRY(const ProfileKey split, splitProfileKey(profileKey));
-    const std::string& key = split.key;
+    // The caller names the key: only the suffix's fault here.
+    auto split = splitProfileKey(profileKey);
+    if (!split.ok()) return makeError("'{}' is not a device profile (llvmpipe or gpu)", profileKey.substr(profileKey.rfind('@')));
+    const std::string& key = split->key;
     const size_t dot = key.find('.');
     if (dot == std::string::npos) return makeError("not of the form technique.setting");
     const std::string owner = key.substr(0, dot), name = key.substr(dot + 1);

@@ -13,8 +13,10 @@ Expected<DeviceProfile> parseProfile(std::string_view text, std::string_view sou
 Expected<ProfileKey> splitProfileKey(const std::string& key) {
     const size_t at = key.rfind('@');
     if (at == std::string::npos) return ProfileKey{key, std::nullopt};
-    BOUNCE_TRY(auto profile, parseProfile(std::string_view(key).substr(at + 1), "setting '" + key + "': the suffix @profile"));
-    return ProfileKey{key.substr(0, at), profile};
+    const std::string suffix = key.substr(at + 1);
+    if (suffix == "llvmpipe") return ProfileKey{key.substr(0, at), DeviceProfile::Llvmpipe};
+    if (suffix == "gpu") return ProfileKey{key.substr(0, at), DeviceProfile::Gpu};
+    return makeError("setting '{}': '@{}' is not a device profile (llvmpipe or gpu)", key, suffix);
 }
 
 DeviceProfile profileOfRenderer(std::string_view renderer) {

@@ -19,8 +19,6 @@ namespace bounce::gl {
 
 class ListDispatch {
 public:
-    // Invocations per group of every job dispatched through it (the jobs' local_size_x).
-    static constexpr uint32_t kLocalSize = 64;
     static constexpr uint32_t kUnbounded = std::numeric_limits<uint32_t>::max();
 
     static Expected<ListDispatch> create();
