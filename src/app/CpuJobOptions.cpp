@@ -5,7 +5,7 @@
 #include "core/Log.h"
 #include "core/Resources.h"
 #include "metrics/NoiseFloor.h"
-#include "techniques/vct/ConeSet.h"
+#include "techniques/vct/ConeQuadrature.h"
 
 #include <algorithm>
 #include <charconv>
@@ -97,10 +97,7 @@ Expected<ReferenceJob> referenceJobFromArgs(const ReferenceArgs& args) {
     job.settings.threads = args.threads;
     job.settings.frame = args.frame;
     if (args.firstReflection == "vct-cones") {
-        // vct's six diffuse cones (Rauwendaal 2013 Eqs. 6.8-6.9, techniques/vct/ConeSet.h).
-        for (size_t k = 0; k < vct::kDiffuseConeDirections.size(); ++k)
-            job.settings.firstReflectionCones.push_back(
-                {vct::kDiffuseConeDirections[k], 0.5f * vct::kDiffuseConeAperture, vct::kDiffuseConeWeights[k]});
+        job.settings.firstReflectionCones = vct::diffuseQuadratureCones();
     } else if (args.firstReflection != "cosine") {
         return makeError("--first-reflection: '{}' is not cosine or vct-cones", args.firstReflection);
     }

@@ -14,7 +14,7 @@
 #include "NicholsTestSupport.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/PathTracer.h"
-#include "techniques/vct/ConeSet.h"
+#include "techniques/vct/ConeQuadrature.h"
 #include "techniques/Registry.h"
 
 #include <cstdio>
@@ -117,9 +117,7 @@ const Image& reference(const std::string& sceneName, const Scene& scene, const R
     auto it = cache.find(key);
     if (it != cache.end()) return it->second;
     PathTracerSettings pts;
-    if (coneQuadrature)
-        for (size_t k = 0; k < vct::kDiffuseConeDirections.size(); ++k)
-            pts.firstReflectionCones.push_back({vct::kDiffuseConeDirections[k], 0.5f * vct::kDiffuseConeAperture, vct::kDiffuseConeWeights[k]});
+    if (coneQuadrature) pts.firstReflectionCones = vct::diffuseQuadratureCones();
     pts.width = pts.height = kSize;
     pts.samplesPerPixel = kReferenceSpp;
     pts.bounces = scope.bounces;

@@ -2,7 +2,7 @@
 #include "ReferenceTestScenes.h"
 #include "reference/PathTracer.h"
 #include "scene/SceneLoader.h"
-#include "techniques/vct/ConeSet.h"
+#include "techniques/vct/ConeQuadrature.h"
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -693,9 +693,7 @@ PathTracerSettings coneQuadratureSettings(bool cones) {
     s.bounces = 1;
     s.indirectOnly = true;
     s.seed = 3;
-    if (cones)
-        for (size_t k = 0; k < 6; ++k)
-            s.firstReflectionCones.push_back({vct::kDiffuseConeDirections[k], 0.5f * vct::kDiffuseConeAperture, vct::kDiffuseConeWeights[k]});
+    if (cones) s.firstReflectionCones = vct::diffuseQuadratureCones();
     return s;
 }
 
