@@ -5,6 +5,7 @@
 #include "core/FileIo.h"
 #include "gpu/BarrierTracker.h"
 #include "gpu/Context.h"
+#include "gpu/GlslScan.h"
 #include "gpu/PortableLimits.h"
 
 #include <spdlog/spdlog.h>
@@ -14,7 +15,6 @@
 #include <fstream>
 #include <functional>
 #include <mutex>
-#include <regex>
 #include <set>
 
 namespace bounce::gl {
@@ -92,10 +92,9 @@ std::array<bool, kShaderStageCount> blockStages(GLuint program, GLenum interface
     for (int s = 0; s < kShaderStageCount; ++s) any |= (out[static_cast<size_t>(s)] = refs[s] != 0);
     if (any || interface != GL_SHADER_STORAGE_BLOCK) return out;
     const std::string base = name.substr(0, name.find('['));
-    const std::regex declared("\\bbuffer\\s+" + base + "\\b");
     for (const StageSource& src : sources) {
         const int s = stageIndex(src.stage);
-        if (s >= 0 && std::regex_search(src.text, declared)) out[static_cast<size_t>(s)] = true;
+        if (s >= 0 && declaresBufferBlock(src.text, base)) out[static_cast<size_t>(s)] = true;
     }
     return out;
 }
