@@ -23,7 +23,8 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import record  # noqa: E402
 
 COUNTERS = {"photon-splat": ["clusterDraws", "cullMs", "bundles"],
-            "area-light": ["raysCast", "raysReused", "raysCulled", "gatherFragments", "renderedFraction/level-0"]}
+            "area-light": ["raysCast", "raysReused", "raysCulled", "gatherFragments", "renderedFraction/level-0"],
+            "isr": ["vpls"]}
 
 
 def run(binary, technique, light, frames, out):

@@ -43,7 +43,7 @@ private:
     std::string m_vplMode{"clusters"};
     int m_vplGrid = 16;             // regular mode: 16^2 = 256 VPLs (Table 4.1)
     int m_lightCoarsest = 16;       // §4.2.4: "16^2 coarsest light patches"
-    int m_lightFinest = 64;         // finest cluster level (assumption; "as fine as the RSM" is allowed)
+    int m_lightFinest = 32;         // finest cluster level (the llvmpipe profile's; the gpu profile's 64 in visitSettings)
     int m_indirectSize = 0;  // indirect-resolution cap (thesis ch. 3: 128^2..1024^2 in 1024^2); 0 = output size
     int m_eyeCoarsest = 16;         // §3.2.4: illumination buffer from 16^2
     std::string m_upsampling = "empty-aware";  // nichols::UpsampleFilter (§3.2.5; the others for comparison)
