@@ -567,19 +567,40 @@ def nichols_cap_table(rec, path):
     return "\n".join(lines)
 
 
+def fidelity_overlays(rec):
+    """Records `fidelity-rows-DATE[-N].json`: the same run for some techniques only (`--techniques`), rerun after
+    their defaults changed; newer than the base record, each replaces its techniques' rows (oldest first)."""
+    out = []
+    for f in sorted(glob.glob(os.path.join(ROOT, "bench/results", "fidelity-rows-*.json"))):
+        with open(f) as fh:
+            r = json.load(fh)
+        if r["date"] > rec["date"] and (r["size"], r["spp"]) == (rec["size"], rec["spp"]):
+            out.append((r, os.path.relpath(f, ROOT)))
+    return sorted(out, key=lambda rp: rp[0]["date"])
+
+
 def fidelity_table(rec, path):
     """Technique x built-in scene: energy (image mean / reference mean) and relMSE against the declared scope."""
-    res = rec["results"]
+    res = {sc: dict(row) for sc, row in rec["results"].items()}
     scenes = list(res.keys())
     techniques = list(next(iter(res.values())).keys())
     tol = rec.get("energyTolerance", 0.15)
+    overlays = []
+    for r, rpath in fidelity_overlays(rec):
+        rows = sorted({t for row in r["results"].values() for t in row})
+        for sc, row in r["results"].items():
+            if sc in res:
+                res[sc].update(row)
+        overlays.append(f"the rows of {', '.join(f'`{t}`' for t in rows)} from `{rpath}` (commit {r['commit']}, {r['date']}; "
+                        f"`{r['command']}`)")
     lines = [f"Raw record `{path}` (commit {rec['commit']}, {rec['date']}, {rec['machine']}, {rec['gpu']}); `{rec['command']}`: "
              f"each technique at its defaults, {rec['size']}², against `bounce reference` at {rec['spp']} spp in the scope `bounce list` "
              "declares for it. Cells: energy (image mean / reference mean) and relMSE; **bold** where the energy leaves "
              f"±{tol * 100:.0f} % or the relMSE is not below the no-GI image's (the shared direct pass's image of the same component); "
              "— where the technique refuses the scene (one-line error)"
              + (f"; *stopped* where a render ran past {rec['runTimeoutSeconds']:g} s" if rec.get("runTimeoutSeconds") else "")
-             + ". The last rows are the no-GI relMSE of each reference scope.", "",
+             + ". The last rows are the no-GI relMSE of each reference scope."
+             + ("".join(f" Replaced: {o}." for o in overlays)), "",
              "| technique | " + " | ".join(f"`{s}`" for s in scenes) + " |", "|---|" + "---|" * len(scenes)]
     nogi = {}  # (scope, component) -> scene -> the no-GI image's relMSE in that scope
     for t in techniques:

@@ -2,7 +2,7 @@
 """Fidelity of every technique on every built-in scene against the reference scope it declares.
 
 Usage: bench/fidelity/run.py [BOUNCE] [--size N] [--spp N] [--scenes a,b] [--techniques x,y] [--name NAME]
-                             [--timeout S]
+                             [--timeout S] [--note TEXT]
        (BOUNCE defaults to build/src/app/bounce; any Python 3, no numpy)
 
 For each (technique, scene): `bounce render` at the technique's defaults (`FRAMES` frames: the image a
@@ -13,7 +13,8 @@ Recorded per pair: energy (image mean / reference mean), relMSE, relRMS and LDR-
 and of the no-GI image, the render's wall time, or the one-line refusal of a scene the technique does
 not accept, or *stopped* where a render ran past `--timeout` seconds (default: none; the gather on the
 Sponza-class scene takes minutes a frame on llvmpipe). The raw record goes to bench/results/<NAME>-<date>.json (NAME defaults to `fidelity`);
-bench/tables.py turns it into the README's fidelity table.
+bench/tables.py turns it into the README's fidelity table. `--name fidelity-rows --techniques x,y --note WHY`
+reruns some techniques' rows after their defaults changed: tables.py puts them over the newest full record's.
 """
 import functools
 import os
@@ -96,6 +97,7 @@ def main():
     only_techniques = option(args, "--techniques", "", str)
     name = option(args, "--name", "fidelity", str)
     timeout = option(args, "--timeout", None, float)
+    note = option(args, "--note", "", str)
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
     scopes = list_techniques(bounce)
     scene_list = [s for s in scenes(bounce) if not only_scenes or s in only_scenes.split(",")]
@@ -103,6 +105,8 @@ def main():
     record = new_record(name, " ".join(["bench/fidelity/run.py"] + sys.argv[1:]), bounce)
     record.update({"size": size, "spp": spp, "frames": FRAMES, "settings": SETTINGS, "energyTolerance": ENERGY_TOLERANCE,
                    "runTimeoutSeconds": timeout, "results": {}})
+    if note:
+        record["note"] = note
     with tempfile.TemporaryDirectory() as tmp:
         refs = {}
 

@@ -1,7 +1,7 @@
 // Scale-derived defaults in the run record (issue 30): iir's filter threshold, clamp distance and
-// shadow bias (fractions of the scene diagonal), vct's voxel grid (a cube around the scene's bounds) and
+// shadow bias (fractions of the scene diagonal), vct's voxel grid (a cube around the scene's bounds),
 // photon-splat's bundle width and depth tolerance (a twentieth of the diagonal, a twentieth of a
-// texel) are resolved on the scene at setup; `bounce render --stats` prints the values used under
+// texel), rsm's and multires-splat's r clamp and rsm-splat's fixed radius are resolved on the scene at setup; `bounce render --stats` prints the values used under
 // "derived" (Technique::derivedSettings). The same scene scaled 10x about the origin must report every
 // such value 10x, and a value the user set must be reported as set.
 #include "GpuTestSupport.h"
@@ -81,6 +81,10 @@ TEST_F(ScaleDerivedDefaultsGpuTest, RunRecordPrintsThemAndTheyScaleWithTheScene)
         {"photon-splat", {"sceneDiagonalMetres", "mapSizeMetres", "depthToleranceMetres"}},
         // sqrt(area / 1000): the area 100x, the size 10x.
         {"radiosity-pr", {"elementSizeMetres", "dynamicElementSizeMetres"}},
+        // Eq. 3.2's r clamp (formFactor=point) and rsm-splat's fixed radius (nichols/SceneScale.h).
+        {"rsm", {"minDistanceMetres"}},
+        {"multires-splat", {"minDistanceMetres"}},
+        {"rsm-splat", {"radiusMetres"}},
     };
     for (const auto& [technique, names] : expected) {
         const nlohmann::json a = derivedOf(small, technique), b = derivedOf(large, technique);
@@ -101,6 +105,10 @@ TEST_F(ScaleDerivedDefaultsGpuTest, RunRecordPrintsThemAndTheyScaleWithTheScene)
     EXPECT_NEAR(iir["clampDistanceMetres"].get<double>(), 0.05 * 10.0 * d, 1e-5 * d);
     EXPECT_NEAR(iir["shadowBiasMetres"].get<double>(), 0.004 * 10.0 * d, 1e-5 * d);
     EXPECT_NEAR(splat["mapSizeMetres"].get<double>(), 0.05 * 10.0 * d, 1e-5 * d);
+    // rsm's and multires-splat's r clamp 0.05 of the diagonal, rsm-splat's fixed radius 0.3 of it.
+    EXPECT_NEAR(derivedOf(large, "rsm")["minDistanceMetres"].get<double>(), 0.05 * 10.0 * d, 1e-5 * d);
+    EXPECT_NEAR(derivedOf(large, "multires-splat")["minDistanceMetres"].get<double>(), 0.05 * 10.0 * d, 1e-5 * d);
+    EXPECT_NEAR(derivedOf(large, "rsm-splat")["radiusMetres"].get<double>(), 0.3 * 10.0 * d, 1e-5 * d);
     glm::vec3 lo, hi;
     large.bounds(0.0f, lo, hi);
     const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
@@ -111,6 +119,8 @@ TEST_F(ScaleDerivedDefaultsGpuTest, RunRecordPrintsThemAndTheyScaleWithTheScene)
                 0.06 * 10.0 * d, 1e-5 * d);
     EXPECT_NEAR(derivedOf(large, "vct", {{"boxSide", "30"}})["boxSideMetres"].get<double>(), 30.0, 1e-4);
     EXPECT_NEAR(derivedOf(large, "photon-splat", {{"mapSize", "2"}})["mapSizeMetres"].get<double>(), 2.0, 1e-6);
+    EXPECT_NEAR(derivedOf(large, "rsm", {{"minDistance", "0.2"}})["minDistanceMetres"].get<double>(), 0.2, 1e-6);
+    EXPECT_NEAR(derivedOf(large, "rsm-splat", {{"radius", "0.7"}})["radiusMetres"].get<double>(), 0.7, 1e-6);
 }
 
 // Radiosity on a scaled scene: element areas and the pitch are world metres (PatchModel's areaMap), so

@@ -51,6 +51,7 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 #include "gpu/DispatchGrid.h"
+#include "techniques/nichols/SceneScale.h"
 #include "techniques/nichols/VplWindow.h"
 
 #include <fmt/format.h>
@@ -101,7 +102,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
             "disk: Eq. 4.1's disk-to-point form factor, as the rsm gather (bounce's default; the VPL's patch area bounds the "
             "near field); point: Eq. 3.2 with the r^2 clamp minDistance (the thesis's ch. 3)",
             kFormFactors);
-    v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2 (formFactor=point), metres (assumption)", 0.0f, 10.0f);
+    v.field("minDistance", m_minDistance, "r clamp of Eq. 3.2 (formFactor=point), metres (assumption); 0 = 0.05 of the scene's diagonal", 0.0f, 1e4f);
     v.field("detailModulation", m_detailModulation, "Eq. 3.3: modulate indirect light by alpha <V,N> + (1 - alpha) (§3.3.3)");
     v.field("detailAlpha", m_detailAlpha, "Eq. 3.3's alpha (thesis 0.5, Fig. 3.9)", 0.0f, 1.0f);
     v.field("depthThreshold", m_thresholds.depth, "max relative depth derivative per pixel (assumption)", 0.0f, 1e9f);
@@ -129,6 +130,7 @@ void MultiresSplatTechnique::visitSettings(SettingsVisitor& v) {
 Expected<void> MultiresSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::checkIndirectSize(m_indirectSize, ctx.size));
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
+    m_minDistanceMetres = nichols::sceneLength(ctx.scene, m_minDistance, nichols::kMinDistanceDiagonalFraction);
     // auto (the default): the stencilled splat where it applies (one shared list), else the thesis's points.
     m_primitive = m_splatPrimitive != "auto" ? m_splatPrimitive : m_refinement == "shared" ? "stencil" : "points";
     if (m_splatPrimitive == "stencil" && m_refinement != "shared")
@@ -269,7 +271,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             refine.set("u_levelSize", m_eye->levelSizes(kMaxLevels));
             refine.set("u_perVpl", perVpl ? 1 : 0);
             refine.set("u_relativeThreshold", m_illuminationContrast);
-            refine.set("u_minDistance2", m_minDistance * m_minDistance);
+            refine.set("u_minDistance2", m_minDistanceMetres * m_minDistanceMetres);
             refine.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
             refine.set("u_gbufferScale", m_eye->scale());
             const glm::ivec2 top = m_eye->levelSize(levels - 1);
@@ -367,7 +369,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
             gl::Program& points = m_primitive == "stencil" ? m_mark : m_splat;
             points.set("u_origins", origins);
             points.set("u_atlasSize", m_buffer->atlasSize());
-            points.set("u_minDistance2", m_minDistance * m_minDistance);
+            points.set("u_minDistance2", m_minDistanceMetres * m_minDistanceMetres);
             points.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
             points.set("u_gbufferScale", m_eye->scale());
             points.set("u_perVpl", perVpl ? 1 : 0);
@@ -392,7 +394,7 @@ void MultiresSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture
                 drawList(1);
                 glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
                 glDisable(GL_STENCIL_TEST);
-                m_splatStencil.set("u_minDistance2", m_minDistance * m_minDistance);
+                m_splatStencil.set("u_minDistance2", m_minDistanceMetres * m_minDistanceMetres);
                 m_splatStencil.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
                 m_visibility->setUniforms(m_splatStencil);
                 // One window of VPLs per instanced draw (nichols/VplWindow.h), one draw per level.

@@ -20,6 +20,7 @@ public:
     std::string_view name() const override { return "multires-splat"; }
     bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
+    void derivedSettings(std::map<std::string, double>& out) const override { out["minDistanceMetres"] = m_minDistanceMetres; }
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void collectCounters(Counters& out) override;
@@ -63,7 +64,8 @@ private:
     // clamp value not given). A fixed 5 cm clamp against VPLs that stand for square metres of surface
     // added 22 % of light on `atrium` (docs/techniques/multires-splat.md, "Form factor").
     std::string m_formFactor{"disk"};
-    float m_minDistance = 0.05f;   // metres; Eq. 3.2's r^2 clamp (assumption), formFactor=point only
+    float m_minDistance = 0.0f;    // metres; Eq. 3.2's r^2 clamp (assumption), formFactor=point only; 0 = derived (nichols/SceneScale.h)
+    float m_minDistanceMetres = 0.0f;  // the clamp in use
     bool m_detailModulation = false;  // Eq. 3.3 (§3.3.3: optional, used with high normal thresholds)
     float m_detailAlpha = 0.5f;       // Fig. 3.9
     nichols::PyramidThresholds m_thresholds{0.1f, 0.3f, false};

@@ -27,6 +27,7 @@
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
 #include "gpu/ShaderLimits.h"
+#include "techniques/nichols/SceneScale.h"
 #include "techniques/nichols/VplWindow.h"
 
 #include <algorithm>
@@ -38,7 +39,7 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side (per cube face for point/area lights); thesis 256, 1024 for the reference", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (must divide rsmSize); thesis 16..128, = rsmSize for the converged limit", 1, 2048);
     v.field("formFactor", m_formFactor, "disk: Eq. 4.1 disk-to-point form factor; point: Eq. 3.2 with an r^2 clamp", kFormFactors);
-    v.field("minDistance", m_minDistance, "r clamp of the point form factor, metres (assumption; the thesis gives no value)", 0.0f, 10.0f);
+    v.field("minDistance", m_minDistance, "r clamp of the point form factor (formFactor=point), metres (assumption; the thesis gives no value); 0 = 0.05 of the scene's diagonal", 0.0f, 1e4f);
     v.field("glossy", m_glossy, "shade with the receiver's full BRDF (Lambert + GGX lobe of common/brdf.glsl) toward the eye; "
             "off = the thesis's Lambertian gather. On with vplGrid = rsmSize and formFactor=point: the limit of multires-splat's mode A");
     m_visibilitySettings.visit(v);
@@ -48,6 +49,7 @@ void RsmTechnique::visitSettings(SettingsVisitor& v) {
 
 Expected<void> RsmTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
+    m_minDistanceMetres = nichols::sceneLength(ctx.scene, m_minDistance, nichols::kMinDistanceDiagonalFraction);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_visibility, voxels::VplVisibility::create(m_visibilitySettings));
@@ -90,7 +92,7 @@ void RsmTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& indirect
     glDisable(GL_STENCIL_TEST);
     ctx.gbuffer.bind();
     m_gather.set("u_diskForm", m_formFactor == "disk" ? 1 : 0);
-    m_gather.set("u_minDistance2", m_minDistance * m_minDistance);
+    m_gather.set("u_minDistance2", m_minDistanceMetres * m_minDistanceMetres);
     m_gather.set("u_glossy", m_glossy ? 1 : 0);
     m_visibility->setUniforms(m_gather);
     gl::Context::current()->bindEmptyVertexArray();

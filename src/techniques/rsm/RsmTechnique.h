@@ -16,6 +16,7 @@ public:
     std::string_view name() const override { return "rsm"; }
     bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
+    void derivedSettings(std::map<std::string, double>& out) const override { out["minDistanceMetres"] = m_minDistanceMetres; }
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void collectCounters(Counters& out) override { m_visibility->collectCounters(out); }
@@ -34,7 +35,8 @@ private:
     int m_rsmSize = 256;      // thesis §4.2.1.2: 256^2 RSM
     int m_vplGrid = 16;       // 16^2 = 256 VPLs (Table 4.1)
     std::string m_formFactor{"disk"};
-    float m_minDistance = 0.05f;  // metres; Eq. 3.2's r^2 clamp, value not given (assumption)
+    float m_minDistance = 0.0f;   // metres; Eq. 3.2's r^2 clamp, value not given; 0 = derived (nichols/SceneScale.h)
+    float m_minDistanceMetres = 0.0f;  // the clamp in use
     bool m_glossy = false;        // the thesis's gather is Lambertian; on = full BRDF (multires-splat mode A's limit)
     // VPLs per gather draw, per device profile (core/DeviceProfile.h). llvmpipe: half of its
     // 65535-iteration loop budget per invocation (gpu/ShaderLimits.h); 32k VPLs over a 64^2 image take a

@@ -13,6 +13,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "techniques/nichols/SceneScale.h"
 #include "techniques/nichols/VplWindow.h"
 
 #include <algorithm>
@@ -29,12 +30,13 @@ void RsmSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("rsmSize", m_rsmSize, "RSM resolution per side (thesis 256)", 8, 2048);
     v.field("vplGrid", m_vplGrid, "VPLs per side per RSM layer (thesis 16..128)", 1, 2048);
     v.field("mode", m_mode, "full: full-screen splats; fixed: splats limited to `radius`; matched: radius adapted to targetFragments", kModes);
-    v.field("radius", m_radius, "fixed mode: VPL influence radius, metres (assumption)", 1e-4f, 1e4f);
+    v.field("radius", m_radius, "fixed mode: VPL influence radius, metres (assumption); 0 = 0.3 of the scene's diagonal", 0.0f, 1e4f);
     v.field("targetFragments", m_targetFragments, "matched mode: fragments per splat (isr's gatherFragments)", 1.0f, 1e9f);
 }
 
 Expected<void> RsmSplatTechnique::setup(const SetupContext& ctx) {
     BOUNCE_TRY_VOID(nichols::RegularVpls::checkGrid(m_rsmSize, m_vplGrid, nichols::ReflectiveShadowMap::layersFor(ctx.scene)));
+    m_radiusMetres = nichols::sceneLength(ctx.scene, m_radius, nichols::kSplatRadiusDiagonalFraction);
     BOUNCE_TRY(m_rsm, nichols::ReflectiveShadowMap::create());
     BOUNCE_TRY(m_vpls, nichols::RegularVpls::create());
     BOUNCE_TRY(m_splat, gl::Program::build({"rsmSplat", {{GL_VERTEX_SHADER, "techniques/rsm_splat/splat.vert"},
@@ -62,7 +64,7 @@ void RsmSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& ind
         m_vpls->extract(*m_rsm, m_vplGrid);
     }
     float radius = 0.0f;
-    if (m_mode == "fixed") radius = m_radius;
+    if (m_mode == "fixed") radius = m_radiusMetres;
     if (m_mode == "matched") {
         if (m_matchedRadius <= 0.0f) {
             glm::vec3 lo, hi;

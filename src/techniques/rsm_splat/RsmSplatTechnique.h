@@ -16,6 +16,7 @@ public:
     std::string_view name() const override { return "rsm-splat"; }
     bool bouncesLightsOnly() const override { return true; }
     void visitSettings(SettingsVisitor& v) override;
+    void derivedSettings(std::map<std::string, double>& out) const override { out["radiusMetres"] = m_radiusMetres; }
     Expected<void> setup(const SetupContext& ctx) override;
     void renderIndirect(FrameContext& ctx, const gl::Texture& indirect) override;
     void collectCounters(Counters& out) override;
@@ -30,7 +31,8 @@ private:
     int m_rsmSize = 256;
     int m_vplGrid = 16;
     std::string m_mode{"full"};
-    float m_radius = 0.3f;            // fixed mode, metres (assumption)
+    float m_radius = 0.0f;            // fixed mode, metres (assumption); 0 = derived (nichols/SceneScale.h)
+    float m_radiusMetres = 0.0f;      // the fixed radius in use
     float m_targetFragments = 5000.0f;  // matched mode: fragments per splat (set to isr's gatherFragments)
     float m_matchedRadius = 0.0f;       // matched mode state, metres
     std::optional<nichols::ReflectiveShadowMap> m_rsm;
