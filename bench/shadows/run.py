@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """Directional-light shadows on large scenes (issue 30; docs/rendering.md "Shadows on large scenes",
 docs/techniques/direct.md): `direct` against `bounce reference --bounces 0` per scene, at SIZE^2 as
-rendered (pixel centres) and at 4x4 samples per pixel box-filtered to SIZE^2 (the reference integrates
+rendered (pixel centres) and at SSxSS samples per pixel (--supersample, default 4) box-filtered to SIZE^2 (the reference integrates
 each pixel's footprint, so this leaves the shadows' error without the geometric edges' aliasing),
 for each binary (label=path: the code before and after) and each settings variant.
 
 usage: bench/shadows/run.py --bin after=build/src/app/bounce [--bin before=/path/to/old/bounce
        --shaders before=/path/to/old/shaders]
        [--scenes courtyard,atrium,cornell-box,two-rooms] [--size 256] [--spp 256] [--refs DIR]
-       [--variant NAME=renderer.k=v,...] [--name shadows]
+       [--variant NAME=renderer.k=v,...] [--supersample SS] [--name shadows]
 """
 import argparse
 import json
@@ -26,7 +26,7 @@ sys.path.insert(0, os.path.join(ROOT, "build/python"))
 import bounce as bp  # noqa: E402
 
 EPS = 0.01  # relMSE's epsilon (metrics/ErrorMetrics.h kRelMseEpsilon)
-SS = 4      # samples per pixel per axis of the supersampled render
+SS = 4      # samples per pixel per axis of the supersampled render (--supersample)
 
 
 def run(cmd, shaders=None):
@@ -51,7 +51,9 @@ def main():
     ap.add_argument("--refs", default=None, help="folder with ref-SCENE.exr/.json/-var.exr to reuse")
     ap.add_argument("--variant", action="append", default=[])
     ap.add_argument("--name", default="shadows")
+    ap.add_argument("--supersample", type=int, default=SS)
     a = ap.parse_args()
+    ss = a.supersample
     bins = dict(b.split("=", 1) for b in a.bin)
     shaders = dict(b.split("=", 1) for b in a.shaders)
     variants = {"defaults": []}
@@ -62,7 +64,7 @@ def main():
     refs = a.refs or tmp
     first = next(iter(bins.values()))
     rec = new_record(a.name, " ".join(sys.argv), first)
-    rec.update({"size": a.size, "spp": a.spp, "supersample": SS, "binaries": bins, "shaders": shaders, "variants": variants, "scenes": {}})
+    rec.update({"size": a.size, "spp": a.spp, "supersample": ss, "binaries": bins, "shaders": shaders, "variants": variants, "scenes": {}})
     n = a.size
     for scene in a.scenes.split(","):
         ref_exr = os.path.join(refs, f"ref-{scene}.exr")
@@ -78,10 +80,10 @@ def main():
                 run([path, "render", "--scene", scene, "--technique", "direct", "--component", "direct",
                      "--size", f"{n}x{n}", "--out", out + ".exr"] + extra, shaders.get(label))
                 run([path, "render", "--scene", scene, "--technique", "direct", "--component", "direct",
-                     "--size", f"{n * SS}x{n * SS}", "--out", out + "-ss.exr"] + extra, shaders.get(label))
+                     "--size", f"{n * ss}x{n * ss}", "--out", out + "-ss.exr"] + extra, shaders.get(label))
                 cmp = json.loads(run([path, "compare", "--json", out + ".exr", ref_exr]))
                 x = np.asarray(bp.read_image(out + ".exr"), dtype=np.float64)
-                xs = np.asarray(bp.read_image(out + "-ss.exr"), dtype=np.float64).reshape(n, SS, n, SS, 3).mean(axis=(1, 3))
+                xs = np.asarray(bp.read_image(out + "-ss.exr"), dtype=np.float64).reshape(n, ss, n, ss, 3).mean(axis=(1, 3))
                 res = {"pixelCentres": metrics(x, ref), "supersampled": metrics(xs, ref)}
                 floor = cmp.get("noiseFloor", {}).get("floor", {})
                 if floor:

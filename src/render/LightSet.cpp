@@ -144,7 +144,6 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings, const
     const glm::vec3 centre = 0.5f * (lo + hi);
     const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     const float diagonal = 2.0f * radius;
-    const int size = settings.shadowMapSize;
 
     GLint previousFbo = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previousFbo);
@@ -157,6 +156,8 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings, const
             g.emission = glm::vec4(light.radiance * e.emissionMean, g.emission.w);
         const bool wideSpot = light.type == LightType::Spot && light.cutoffAngle > kMaxPerspectiveSpotAngle;
         const bool cube = light.type == LightType::Point || light.type == LightType::Area || wideSpot;
+        const int size = light.type == LightType::Directional && settings.cascadeMapSize > 0 ? settings.cascadeMapSize
+                                                                                             : settings.shadowMapSize;
         // Cube maps of one-sided area lights sit a hair in front of the emitter, so that a surface in
         // its plane (a ceiling around a recessed light) does not shadow the room. A two-sided light
         // lights both half-spaces, so its map sits at its centre: the emitter itself is not scene

@@ -7,6 +7,8 @@
 namespace bounce::render {
 
 struct RenderSettings final : Configurable {
+    static constexpr int kCascadeMapSizeLlvmpipe = 0;     // = shadowMapSize (1024)
+    static constexpr int kCascadeMapSizeGpu = 4096;       // 4 tiles x 4096^2 x 4 B = 268 MB per directional light
     int shadowMapSize = 1024;     // texels per side (2D maps and each cube face)
     int pcfRadius = 1;            // percentage-closer filter radius in texels (0 = one hard tap)
     float shadowBias = 0.002f;    // metres along the surface normal (the normal offset's constant part)
@@ -19,6 +21,11 @@ struct RenderSettings final : Configurable {
     // View-fitted cascades of directional lights' maps in front of the whole-scene map (0: the
     // whole-scene map alone, as before issue 30). Each cascade has shadowMapSize^2 texels.
     int shadowCascades = 3;
+    // Texels per side of each tile of a directional light's map (its view-fitted cascades and its
+    // whole-scene map), per device profile: 0 (= shadowMapSize) on llvmpipe, where a 4096^2 atlas costs
+    // 1.1 s a refit (every camera move) on courtyard; 4096 on a GPU, where the shared direct pass on
+    // courtyard then comes within 2.6x the reference's noise instead of 15x (docs/techniques/direct.md).
+    int cascadeMapSize = 0;
     float exposure = 0.0f;        // EV, for PNG output and the viewer
     std::string toneCurve = "aces";
     // Per-pass timing (gl::GpuTimers::Mode): queries (GL timestamps, the frame as it runs) or finish
@@ -37,6 +44,9 @@ struct RenderSettings final : Configurable {
         v.field("shadowCascades", shadowCascades,
                 "view-fitted cascades of a directional light's shadow map before its whole-scene map (0 = none)", 0,
                 SHADOW_MAX_CASCADES - 1);
+        v.field("cascadeMapSize", cascadeMapSize,
+                "texels per side of each tile of a directional light's map (its cascades and whole-scene map); 0 = shadowMapSize",
+                0, 8192, PerProfile<int>{kCascadeMapSizeLlvmpipe, kCascadeMapSizeGpu});
         v.field("exposure", exposure, "exposure for PNG output and the viewer (EV stops)", -20.0f, 20.0f);
         v.field("toneCurve", toneCurve, "tone curve for PNG output and the viewer", curves);
         static constexpr std::string_view timings[] = {"queries", "finish"};
