@@ -63,6 +63,7 @@ TEST_F(PortabilityRestGpuTest, LlvmpipeMotivatedDefaultsSwitchWithTheProfile) {
         {"isr", "gatherPass", "\"compute\"", "\"stencil\""},
         {"hisr", "gatherPass", "\"compute\"", "\"stencil\""},
         {"multires-splat", "refinePass", "\"compute\"", "\"geometry\""},
+        {"isr", "lightFinest", "32", "64"},  // issue 30: courtyard's sky frame on llvmpipe
     };
     for (const auto& [technique, name, llvmpipe, gpu] : cases) {
         auto t = createTechnique(technique);
