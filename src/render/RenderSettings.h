@@ -7,8 +7,8 @@
 namespace bounce::render {
 
 struct RenderSettings final : Configurable {
-    static constexpr int kCascadeMapSizeLlvmpipe = 0;     // = shadowMapSize (1024)
-    static constexpr int kCascadeMapSizeGpu = 4096;       // 4 tiles x 4096^2 x 4 B = 268 MB per directional light
+    static constexpr int kCascadeMapSizeLlvmpipe = 0;     // texels; 0 = shadowMapSize
+    static constexpr int kCascadeMapSizeGpu = 4096;       // texels (4 tiles x 4096^2 x 4 B = 268 MB a directional light)
     int shadowMapSize = 1024;     // texels per side (2D maps and each cube face)
     int pcfRadius = 1;            // percentage-closer filter radius in texels (0 = one hard tap)
     float shadowBias = 0.002f;    // metres along the surface normal (the normal offset's constant part)
@@ -19,12 +19,12 @@ struct RenderSettings final : Configurable {
     // 0.0037; docs/rendering.md "Shadows").
     float shadowNormalOffset = 0.0f;
     // View-fitted cascades of directional lights' maps in front of the whole-scene map (0: the
-    // whole-scene map alone, as before issue 30). Each cascade has shadowMapSize^2 texels.
+    // whole-scene map alone, as before issue 30). Each cascade has cascadeMapSize^2 texels.
     int shadowCascades = 3;
     // Texels per side of each tile of a directional light's map (its view-fitted cascades and its
-    // whole-scene map), per device profile: 0 (= shadowMapSize) on llvmpipe, where a 4096^2 atlas costs
-    // 1.1 s a refit (every camera move) on courtyard; 4096 on a GPU, where the shared direct pass on
-    // courtyard then comes within 2.6x the reference's noise instead of 15x (docs/techniques/direct.md).
+    // whole-scene map), per device profile: 0 (= shadowMapSize) on llvmpipe, which re-renders the atlas on
+    // the CPU at every camera move; 4096 on a GPU, where the finer tiles bring the shared direct pass on a
+    // large scene several times closer to the reference (measured: docs/techniques/direct.md).
     int cascadeMapSize = 0;
     float exposure = 0.0f;        // EV, for PNG output and the viewer
     std::string toneCurve = "aces";

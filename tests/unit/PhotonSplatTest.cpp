@@ -257,6 +257,21 @@ TEST(PhotonSplatBundles, EscapingPhotonsKeepABundleToTheBoxsEdge) {
     EXPECT_NEAR(bundles[0].hitDistance, 1.0f / up.direction.y, 1e-4f);  // leaves through y = 2
 }
 
+namespace {
+
+// The bundle of `ph` whose ray hits at `hitDistance` on a surface of normal `hitNormal`, its origin C where
+// placeBundles puts it (min(stepBack, d) back from the hit), and its volume.
+BundleVolume volumeOfHit(const Photon& ph, float hitDistance, glm::vec3 hitNormal, const VolumeSettings& vs, Bundle& b) {
+    b.direction = ph.direction;
+    bundleAxes(b.direction, b.right, b.up);
+    b.hitDistance = hitDistance;
+    b.hitNormal = hitNormal;
+    b.origin = ph.position + (hitDistance - std::min(vs.stepBack, hitDistance)) * ph.direction;
+    return bundleVolume(ph, b, vs);
+}
+
+}  // namespace
+
 TEST(PhotonSplatBundles, TheVolumeAndItsCullingMatchDirectGeometry) {
     // A 10 x 10 m floor of 0.25 m cells (3200 triangles, 50 clusters of 64) and bundles in random
     // directions: every floor point inside a volume belongs to a cluster the culling keeps (it is
@@ -287,18 +302,13 @@ TEST(PhotonSplatBundles, TheVolumeAndItsCullingMatchDirectGeometry) {
         ph.normal = {0.0f, -1.0f, 0.0f};
         const float theta = 0.9f * rng.next(), phi = 6.2831853f * rng.next();
         ph.direction = {std::sin(theta) * std::cos(phi), -std::cos(theta), std::sin(theta) * std::sin(phi)};
-        Bundle b;
-        b.direction = ph.direction;
-        bundleAxes(b.direction, b.right, b.up);
-        b.hitDistance = -ph.position.y / ph.direction.y;
-        b.hitNormal = {0.0f, 1.0f, 0.0f};
         VolumeSettings vs;
         vs.half = 0.3f;
         vs.stepBack = i % 2 == 0 ? 1e30f : 0.2f;  // from the photon, or the document's small step back
-        b.origin = ph.position + (b.hitDistance - std::min(vs.stepBack, b.hitDistance)) * ph.direction;  // C, as placeBundles puts it
         vs.lo = glm::vec3(-5.0f, 0.0f, -5.0f);
         vs.hi = glm::vec3(5.0f, 0.0f, 5.0f);
-        const BundleVolume v = bundleVolume(ph, b, vs);
+        Bundle b;
+        const BundleVolume v = volumeOfHit(ph, -ph.position.y / ph.direction.y, {0.0f, 1.0f, 0.0f}, vs, b);
         // The hit lies inside; the point straight behind the photon does not.
         EXPECT_TRUE(v.contains(ph.position + b.hitDistance * ph.direction)) << i;
         EXPECT_FALSE(v.contains(ph.position - 0.1f * ph.direction)) << i;
@@ -383,20 +393,16 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
         ph.position = p;
         ph.normal = n;
         ph.direction = w;
-        Bundle b;
-        b.direction = w;
-        bundleAxes(b.direction, b.right, b.up);
-        b.hitDistance = 1.0f + rng.next();
+        const float hitDistance = 1.0f + rng.next();
         const glm::vec3 tilt = unit();
-        b.hitNormal = glm::normalize(-w + 0.8f * tilt);
         VolumeSettings vs;
         vs.half = 0.1f + 0.4f * rng.next();
         vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
         vs.emitterOffset = 1e-3f;
-        b.origin = p + (b.hitDistance - std::min(vs.stepBack, b.hitDistance)) * w;
         vs.lo = lo;
         vs.hi = hi;
-        const BundleVolume v = bundleVolume(ph, b, vs);
+        Bundle b;
+        const BundleVolume v = volumeOfHit(ph, hitDistance, glm::normalize(-w + 0.8f * tilt), vs, b);
         for (int k = 0; k < 40; ++k) {
             // Boxes around the bundle: within 2.5 h of its axis, from 0.5 m behind the photon to 3 m on.
             const float h = v.half;

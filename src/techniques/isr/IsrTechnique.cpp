@@ -41,9 +41,9 @@ namespace {
 constexpr int kLocalSize = 8;  // clusters.comp local size
 constexpr int kMaxClusterLevels = 16;  // clusters.comp u_levelSize[16]
 // lightFinest's default per device profile (issue 30): 64^2 on a GPU (an assumption: the thesis allows
-// up to the RSM resolution); 32^2 on llvmpipe, where the gather over the clusters is the frame (courtyard
-// under the sky: 10,866 -> 2,988 VPLs, the frame 1.05 -> 0.46 s; fidelity within the record's noise,
-// docs/techniques/isr.md "Device profiles").
+// up to the RSM resolution); 32^2 on llvmpipe, where the gather over the clusters is the frame on a large
+// scene: about a quarter of the VPLs for a small loss of fidelity (measured: docs/techniques/isr.md
+// "Device profiles").
 constexpr int kLightFinestLlvmpipe = 32;
 constexpr int kLightFinestGpu = 64;
 }
