@@ -63,7 +63,8 @@ TEST_F(PortabilityRestGpuTest, LlvmpipeMotivatedDefaultsSwitchWithTheProfile) {
         {"isr", "gatherPass", "\"compute\"", "\"stencil\""},
         {"hisr", "gatherPass", "\"compute\"", "\"stencil\""},
         {"multires-splat", "refinePass", "\"compute\"", "\"geometry\""},
-        {"isr", "lightFinest", "32", "64"},  // issue 30: courtyard's sky frame on llvmpipe
+        {"isr", "lightFinest", "32", "64"},     // issue 30: courtyard's sky frame on llvmpipe
+        {"area-light", "raySteps", "40", "64"},  // likewise
     };
     for (const auto& [technique, name, llvmpipe, gpu] : cases) {
         auto t = createTechnique(technique);

@@ -63,7 +63,7 @@ private:
     int m_voxelBits = 128;             // §5.3.3: 128 bits per pixel
     bool m_voxelFootprint = true;      // deviation: fragments set the slices they span (voxelize.frag)
     bool m_voxelOutside = true;        // deviation: a second grid along the lights beyond the camera's frustum
-    int m_raySteps = 64;               // assumption (not given; 32 leak light past the Cornell short block's corner, docs)
+    int m_raySteps = 40;               // the llvmpipe profile's (kRayStepsLlvmpipe); the gpu profile's 64 in visitSettings
     int m_rayThickness = 0;            // extra bits each side of a step's slice span (assumption; 1 over-occludes, docs)
     float m_rayBias = 1.5f;            // voxels (assumption; "bias", Fig. 5.12)
     bool m_specular = true;            // §5.3.2.1: separate Phong pass
