@@ -2,7 +2,7 @@
 """Fidelity of every technique on every built-in scene against the reference scope it declares.
 
 Usage: bench/fidelity/run.py [BOUNCE] [--size N] [--spp N] [--scenes a,b] [--techniques x,y] [--name NAME]
-                             [--timeout S] [--note TEXT]
+                             [--timeout S] [--note TEXT] [--scene-param K=V ...] [--set K=V ...]
        (BOUNCE defaults to build/src/app/bounce; any Python 3, no numpy)
 
 For each (technique, scene): `bounce render` at the technique's defaults (`FRAMES` frames: the image a
@@ -41,6 +41,12 @@ FRAMES = {"radiosity-pr": 8, "radiosity-incremental": 8, "radiosity-cross": 8}
 # frames, as before the budget; docs/techniques/radiosity.md, "Per-frame shooting budget").
 SETTINGS = {t: {"frameBudgetMs": "0"} for t in FRAMES}
 
+# --scene-param K=V (every render and reference) and --set K=V (the technique's renders, not the no-GI
+# image's): a scene variant (courtyard under its sky) or a setting other than the default, for records
+# beside the defaults' one.
+SCENE_PARAMS = []
+EXTRA_SETS = []
+
 # The bounds every technique meets at its defaults (DEVELOPERS.md, issue 28).
 ENERGY_TOLERANCE = 0.15
 # The baselines are recorded but not held to the bounds: `direct` is the no-GI image itself and
@@ -75,6 +81,9 @@ def render(bounce, scene, technique, size, frames, component, out, start=0, time
            str(frames), "--component", component, "--out", out]
     for k, v in SETTINGS.get(technique, {}).items():
         cmd += ["--set", f"{k}={v}"]
+    if technique != "direct":
+        cmd += [a for kv in EXTRA_SETS for a in ("--set", kv)]
+    cmd += [a for kv in SCENE_PARAMS for a in ("--scene-param", kv)]
     if start:
         cmd += ["--start-frame", str(start)]
     t0 = time.monotonic()
@@ -98,6 +107,10 @@ def main():
     name = option(args, "--name", "fidelity", str)
     timeout = option(args, "--timeout", None, float)
     note = option(args, "--note", "", str)
+    while "--scene-param" in args:
+        SCENE_PARAMS.append(option(args, "--scene-param", "", str))
+    while "--set" in args:
+        EXTRA_SETS.append(option(args, "--set", "", str))
     bounce = os.path.abspath(args[0] if args else os.path.join(ROOT, "build/src/app/bounce"))
     scopes = list_techniques(bounce)
     scene_list = [s for s in scenes(bounce) if not only_scenes or s in only_scenes.split(",")]
@@ -107,6 +120,8 @@ def main():
                    "runTimeoutSeconds": timeout, "results": {}})
     if note:
         record["note"] = note
+    if SCENE_PARAMS or EXTRA_SETS:
+        record.update({"sceneParams": SCENE_PARAMS, "extraSettings": EXTRA_SETS})
     with tempfile.TemporaryDirectory() as tmp:
         refs = {}
 
@@ -117,6 +132,7 @@ def main():
             if key not in refs:
                 path = os.path.join(tmp, f"ref-{len(refs)}.exr")
                 cmd = [bounce, "reference", "--scene", scene, "--size", f"{size}x{size}", "--spp", str(spp), "--out", path] + flags
+                cmd += [a for kv in SCENE_PARAMS for a in ("--scene-param", kv)]
                 if frame:
                     cmd += ["--frame", str(frame)]
                 p = subprocess.run(cmd, capture_output=True, text=True, check=True)
