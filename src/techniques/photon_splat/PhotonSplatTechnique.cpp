@@ -27,8 +27,6 @@
 #include "techniques/photon_splat/splat_shared.h"
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -45,7 +43,6 @@ constexpr float kAutoMapSizeFraction = 0.05f;  // bundle width 2h = a twentieth 
 constexpr float kAutoToleranceTexels = 0.05f;  // depth tolerance past the receiver plane: 1/20 texel (float rounding, curvature)
 constexpr float kEmitterOffsetFraction = 1e-4f;  // emitter plane offset: 1e-4 of the scene diagonal (0.1 mm per metre)
 constexpr uint32_t kClusterTriangles = 64;     // triangles per culling cluster
-constexpr int kCullGrain = 64;                 // bundles per parallel cull task (a bundle's cull: tens of microseconds)
 constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels (64 MB of DEPTH32F)
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
 constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first hits' depths +- 4 texels (slopes to tan 76 degrees over a half texel diagonal... and then some)
@@ -273,7 +270,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     const int tiles = m_tiles.x * m_tiles.y;
     int batches = 0;
     double clusterDraws = 0.0, cullMs = 0.0;
-    std::vector<std::vector<uint32_t>>& kept = m_cull.kept;
+    std::vector<uint32_t>& kept = m_cull.kept;
     std::vector<uint32_t>& perCluster = m_cull.perCluster;
     std::vector<glm::uvec2>& pairs = m_cull.pairs;  // (cluster, bundle)
     std::vector<DrawCommand>& commands = m_cull.commands;
@@ -286,20 +283,13 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             // indirect command per cluster, its instances the bundles that keep it (grouped by a
             // counting sort, so that baseInstance + gl_InstanceID reads them).
             const auto t0 = std::chrono::steady_clock::now();
-            // The bundles are culled in parallel (a bundle's list depends on its volume alone), then
-            // gathered in bundle order: the same pairs, commands and maps as one thread gives.
-            if (kept.size() < static_cast<size_t>(n)) kept.resize(static_cast<size_t>(n));
-            tbb::parallel_for(tbb::blocked_range<int>(0, n, kCullGrain), [&](const tbb::blocked_range<int>& r) {
-                for (int i = r.begin(); i < r.end(); ++i) {
-                    std::vector<uint32_t>& k = kept[static_cast<size_t>(i)];
-                    k.clear();
-                    if (m_cullClusters) m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], k);
-                    else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) k.push_back(c);
-                }
-            });
             pairs.clear();
-            for (int i = 0; i < n; ++i)
-                for (uint32_t c : kept[static_cast<size_t>(i)]) pairs.push_back({c, static_cast<uint32_t>(first + i)});
+            for (int i = 0; i < n; ++i) {
+                kept.clear();
+                if (m_cullClusters) m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
+                else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) kept.push_back(c);
+                for (uint32_t c : kept) pairs.push_back({c, static_cast<uint32_t>(first + i)});
+            }
             perCluster.assign(m_clusters.clusters().size() + 1, 0u);
             for (const glm::uvec2& pr : pairs) ++perCluster[pr.x + 1];
             std::partial_sum(perCluster.begin(), perCluster.end(), perCluster.begin());

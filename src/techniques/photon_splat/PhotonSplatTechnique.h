@@ -103,8 +103,7 @@ private:
         GLuint baseInstance;
     };
     struct CullScratch {
-        std::vector<uint32_t> perCluster;
-        std::vector<std::vector<uint32_t>> kept;  // per bundle of the batch (culled in parallel)
+        std::vector<uint32_t> kept, perCluster;
         std::vector<glm::uvec2> pairs;     // (cluster, bundle)
         std::vector<DrawCommand> commands;
         std::vector<glm::uvec2> drawData;  // (bundle, object) per instance
