@@ -111,39 +111,46 @@ BundleVolume bundleVolume(const Photon& photon, const Bundle& bundle, const Volu
     }
     v.zNear = cosEmit > kMinDirectionCosine ? std::max(nearMin, emitMin) : nearMin;
     v.zFar = std::max(farMax, v.zNear + 1e-6f);
-    return v;
-}
-
-bool mayOverlap(const BundleVolume& v, glm::vec3 lo, glm::vec3 hi) {
-    const glm::vec3 centre = 0.5f * (lo + hi), extent = 0.5f * (hi - lo);
-    // The volume is the parallelepiped of its corners (cut by the emitter plane: a subset).
-    auto separated = [&](glm::vec3 axis) {
+    v.cornersLo = v.cornersHi = v.corners[0];
+    for (const glm::vec3& corner : v.corners) {
+        v.cornersLo = glm::min(v.cornersLo, corner);
+        v.cornersHi = glm::max(v.cornersHi, corner);
+    }
+    auto addAxis = [&](glm::vec3 axis) {
         float a = std::numeric_limits<float>::infinity(), b = -a;
-        for (const glm::vec3& c : v.corners) {
-            const float t = glm::dot(c, axis);
+        for (const glm::vec3& corner : v.corners) {
+            const float t = glm::dot(corner, axis);
             a = std::min(a, t);
             b = std::max(b, t);
         }
-        const float mid = glm::dot(centre, axis);
-        const float r = glm::dot(extent, glm::abs(axis));
-        return b < mid - r || a > mid + r;
+        v.axes[static_cast<size_t>(v.axisCount)] = axis;
+        v.spans[static_cast<size_t>(v.axisCount++)] = glm::vec2(a, b);
     };
-    for (int k = 0; k < 3; ++k) {
-        if (v.corners[0][k] > hi[k] && v.corners[1][k] > hi[k] && v.corners[2][k] > hi[k] && v.corners[3][k] > hi[k] &&
-            v.corners[4][k] > hi[k] && v.corners[5][k] > hi[k] && v.corners[6][k] > hi[k] && v.corners[7][k] > hi[k])
-            return false;
-        if (v.corners[0][k] < lo[k] && v.corners[1][k] < lo[k] && v.corners[2][k] < lo[k] && v.corners[3][k] < lo[k] &&
-            v.corners[4][k] < lo[k] && v.corners[5][k] < lo[k] && v.corners[6][k] < lo[k] && v.corners[7][k] < lo[k])
-            return false;
-    }
-    if (separated(v.right) || separated(v.up) || separated(v.nearNormal)) return false;
-    // The edges along w against the box's edges: the axes w x e_k. A long bundle crossing the scene
+    addAxis(v.right);
+    addAxis(v.up);
+    addAxis(v.nearNormal);
+    // The edges along w against a box's edges: the axes w x e_k. A long bundle crossing the scene
     // diagonally passes its face normals' and the world axes' tests beside many boxes it misses.
     for (int k = 0; k < 3; ++k) {
         glm::vec3 e(0.0f);
         e[k] = 1.0f;
         const glm::vec3 axis = glm::cross(v.direction, e);
-        if (glm::dot(axis, axis) > kMinAxisLength2 && separated(axis)) return false;
+        if (glm::dot(axis, axis) > kMinAxisLength2) addAxis(axis);
+    }
+    return v;
+}
+
+bool mayOverlap(const BundleVolume& v, glm::vec3 lo, glm::vec3 hi) {
+    const glm::vec3 centre = 0.5f * (lo + hi), extent = 0.5f * (hi - lo);
+    // The volume is the parallelepiped of its corners (cut by the emitter plane: a subset). The world
+    // axes: every corner beyond the box on one side.
+    if (glm::any(glm::greaterThan(v.cornersLo, hi)) || glm::any(glm::lessThan(v.cornersHi, lo))) return false;
+    // The volume's own axes and w x e_k (bundleVolume's spans) against the box's projection.
+    for (int i = 0; i < v.axisCount; ++i) {
+        const glm::vec3 axis = v.axes[static_cast<size_t>(i)];
+        const float mid = glm::dot(centre, axis);
+        const float r = glm::dot(extent, glm::abs(axis));
+        if (v.spans[static_cast<size_t>(i)].y < mid - r || v.spans[static_cast<size_t>(i)].x > mid + r) return false;
     }
     // The emitter plane: a box wholly behind the photon's surface (depth.vert clips all of it), with a
     // margin of kEmitterCullMargin of the plane's offset for rounding between here and the shader.

@@ -35,6 +35,13 @@ struct BundleVolume {
     float emitterOffset = 0.0f;
     float zNear = 0.0f, zFar = 0.0f;  // depth range along w from P that holds the volume (the map's projection)
     std::array<glm::vec3, 8> corners{};  // corner i: right sign bit 0, up sign bit 1, far bit 2
+    // What mayOverlap tests, fixed per volume (bundleVolume fills it once instead of every box's test
+    // projecting the eight corners again): the corners' bounds, and their span [x, y] along each
+    // separating axis (right, up, the near normal, then w x e_k for the world axes e_k not along w).
+    glm::vec3 cornersLo{0.0f}, cornersHi{0.0f};
+    std::array<glm::vec3, 6> axes{};
+    std::array<glm::vec2, 6> spans{};
+    int axisCount = 0;
 
     // The far plane: x is before it when dot(x, m) >= farOffset().
     float farOffset() const { return nearOffset + length * glm::dot(direction, nearNormal); }
