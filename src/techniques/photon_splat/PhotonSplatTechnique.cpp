@@ -149,6 +149,11 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     m_outFbo = gl::Framebuffer::create("photon-splat.outFbo");
     m_bundleBuffer = gl::Buffer::create("photon-splat.bundles", static_cast<size_t>(capacity) * sizeof(gpu::BundleGpu));
     m_ranges = gl::Buffer::create("photon-splat.hitRanges", static_cast<size_t>(capacity) * sizeof(glm::vec2));
+    // The per-bundle CPU arrays at their largest from the start: the bundle count varies from frame to
+    // frame (photons that reach no surface), and growing them later crept the soak's RSS past its bound.
+    m_bundles.reserve(static_cast<size_t>(capacity));
+    m_volumes.reserve(static_cast<size_t>(capacity));
+    m_gpuBundles.reserve(static_cast<size_t>(capacity));
     gl::TextureDesc points;
     points.target = GL_TEXTURE_2D_ARRAY;
     points.format = GL_RGBA32F;
