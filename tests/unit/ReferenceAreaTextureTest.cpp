@@ -409,17 +409,11 @@ Scene emissiveQuadOverPlane(float emission, bool facingUp) {
     quad.name = "lamp";
     if (facingUp) testscenes::addQuad(quad, {0.0f, 0.6f, 0.0f}, {0.4f, 0.0f, 0.0f}, {0.0f, 0.0f, -0.4f});
     else testscenes::addQuad(quad, {0.0f, 0.6f, 0.0f}, {0.4f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.4f});
-    scene.meshes.push_back(quad);
     Material m;
     m.name = "glow";
     m.baseColor = glm::vec3(0.0f);
     m.emission = glm::vec3(emission);
-    scene.materials.push_back(m);
-    Object o;
-    o.name = "lamp";
-    o.mesh = 1;
-    o.material = 1;
-    scene.objects.push_back(o);
+    testscenes::addObject(scene, quad, m);
     return scene;
 }
 

@@ -665,16 +665,10 @@ Scene floorUnderASquare(glm::vec3 dir, float side) {
     Mesh square;
     square.name = "square";
     testscenes::addQuad(square, dir, v, u);  // front side cross(v, u) = -dir: towards the origin
-    scene.meshes.push_back(square);
     Material white;
     white.name = "white";
     white.baseColor = glm::vec3(1.0f);
-    scene.materials.push_back(white);
-    Object o;
-    o.name = "square";
-    o.mesh = 1;
-    o.material = 1;
-    scene.objects.push_back(o);
+    testscenes::addObject(scene, square, white);
     Light l;
     l.type = LightType::Point;
     l.name = "bulb";

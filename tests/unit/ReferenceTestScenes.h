@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <utility>
 
 namespace bounce::testscenes {
 
@@ -19,6 +20,17 @@ inline void addQuad(Mesh& mesh, glm::vec3 centre, glm::vec3 u, glm::vec3 v) {
     mesh.normals.insert(mesh.normals.end(), {n, n, n, n});
     mesh.uvs.insert(mesh.uvs.end(), {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)});
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+
+// Appends `mesh` drawn with `material` to `scene` as one more object, named after the mesh.
+inline void addObject(Scene& scene, Mesh mesh, Material material) {
+    Object o;
+    o.name = mesh.name;
+    o.mesh = static_cast<uint32_t>(scene.meshes.size());
+    o.material = static_cast<uint32_t>(scene.materials.size());
+    scene.meshes.push_back(std::move(mesh));
+    scene.materials.push_back(std::move(material));
+    scene.objects.push_back(o);
 }
 
 // The six faces of the cube [-h, h]^3, facing inwards.
