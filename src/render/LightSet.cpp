@@ -167,7 +167,7 @@ void LightSet::update(SceneDrawer& drawer, const RenderSettings& settings, const
         const float farPlane = glm::length(origin - centre) + radius;
         const float nearPlane = kNearFraction * diagonal;
         g.edgeU.w = cube ? kCube : k2D;
-        g.edgeV.w = settings.shadowBias;
+        g.edgeV.w = light.type == LightType::Directional ? settings.sunShadowBias : settings.shadowBias;
         ShadowCascades cascades;
         if (!cube) {
             glm::mat4 viewFromWorld, clipFromView;

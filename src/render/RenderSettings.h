@@ -12,6 +12,13 @@ struct RenderSettings final : Configurable {
     int shadowMapSize = 1024;     // texels per side (2D maps and each cube face)
     int pcfRadius = 1;            // percentage-closer filter radius in texels (0 = one hard tap)
     float shadowBias = 0.002f;    // metres along the surface normal (the normal offset's constant part)
+    // The same for directional lights' maps, whose receiver-plane depth bias already keeps planar
+    // receivers off their own depth: a quarter of it, because the constant offset moves their shadow
+    // edges and leaks light at contacts (courtyard / atrium at 4096^2 tiles: 2.6x / 3.2x the reference's
+    // noise with 2 mm, 1.8x / 2.3x with 0.5 mm or none), while a normal-mapped receiver's plane, tilted
+    // by its shading normal, still needs some (MaskedNormalMappedGpuTest: acne at 0.25 mm, clean at
+    // 0.5 mm; docs/techniques/direct.md).
+    float sunShadowBias = 0.0005f;
     // Normal offset per texel of a 2D map, in units of the PCF kernel's reach (pcfRadius + 1) * sqrt(2)
     // texels, times sin(theta) of the light's incidence (1 alone would lift every tap of a planar
     // receiver above its own stored depth). Off by default: the receiver-plane depth bias already does
@@ -37,7 +44,10 @@ struct RenderSettings final : Configurable {
         static constexpr std::string_view curves[] = {"clamp", "reinhard", "aces"};
         v.field("shadowMapSize", shadowMapSize, "shadow map resolution per side (texels)", 64, 8192);
         v.field("pcfRadius", pcfRadius, "PCF kernel radius (texels); 0 gives hard shadows", 0, 4);
-        v.field("shadowBias", shadowBias, "constant normal-offset shadow bias (metres)", 0.0f, 1.0f);
+        v.field("shadowBias", shadowBias, "constant normal-offset shadow bias of point, spot and area lights' maps (metres)",
+                0.0f, 1.0f);
+        v.field("sunShadowBias", sunShadowBias, "constant normal-offset shadow bias of directional lights' maps (metres)",
+                0.0f, 1.0f);
         v.field("shadowNormalOffset", shadowNormalOffset,
                 "texel-scaled normal offset of 2D shadow maps, in PCF-kernel reaches x sin(incidence); 0 = off", 0.0f,
                 8.0f);
