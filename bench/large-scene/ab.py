@@ -8,6 +8,7 @@ than wall time. Per pass: the wall ms of the last frame (renderer.timing=finish)
 two binaries' images are byte-identical.
 
   bench/large-scene/ab.py --technique photon-splat --a /tmp/bounce-before --b build/src/app/bounce --reps 3 --name photon-splat-perf
+  (--set-a / --set-b: settings for one side's runs, e.g. one binary with two values of a setting)
 """
 import argparse
 import filecmp
@@ -27,12 +28,13 @@ COUNTERS = {"photon-splat": ["clusterDraws", "cullMs", "bundles"],
             "isr": ["vpls"]}
 
 
-def run(binary, technique, light, frames, out):
+def run(binary, technique, light, frames, out, sets=()):
     stats = out + ".json"
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     subprocess.run([binary, "render", "--scene", "courtyard", "--scene-param", f"light={light}", "--technique", technique,
                     "--size", "256x256", "--frames", str(frames), "--out", out + ".exr", "--stats", stats,
-                    "--set", "renderer.timing=finish"], check=True, capture_output=True)
+                    "--set", "renderer.timing=finish"] + [a for kv in sets for a in ("--set", kv)], check=True,
+                   capture_output=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     with open(stats) as f:
@@ -54,10 +56,13 @@ def main():
     ap.add_argument("--frames", type=int, default=3)
     ap.add_argument("--name", required=True)
     ap.add_argument("--note", default="")
+    ap.add_argument("--set-a", action="append", default=[], help="setting name=value for binary a's runs (repeatable)")
+    ap.add_argument("--set-b", action="append", default=[], help="setting name=value for binary b's runs (repeatable)")
     args = ap.parse_args()
     rec = record.new_record(args.name, " ".join(sys.argv), args.b)
     rec["note"] = args.note
     rec["binaries"] = {"a": args.a, "b": args.b}
+    rec["settings"] = {"a": args.set_a, "b": args.set_b}
     rec["loadavg_start"] = os.getloadavg()
     tmp = tempfile.mkdtemp(prefix="ps-perf-")
     results = {}
@@ -67,9 +72,10 @@ def main():
         for rep in range(args.reps):
             for tag in ("a", "b"):
                 binary = args.a if tag == "a" else args.b
+                sets = args.set_a if tag == "a" else args.set_b
                 base = os.path.join(tmp, f"{light}-{tag}-{rep}")
-                cpu1, _ = run(binary, args.technique, light, 1, base + "-1")
-                cpuN, last = run(binary, args.technique, light, args.frames, base + "-n")
+                cpu1, _ = run(binary, args.technique, light, 1, base + "-1", sets)
+                cpuN, last = run(binary, args.technique, light, args.frames, base + "-n", sets)
                 s = {"frameCpuS": (cpuN - cpu1) / (args.frames - 1)}
                 s.update({p + ".wallMs": ms for p, ms in last["gpu_ms"].items() if p.startswith(args.technique)})
                 s.update({c: last["counters"].get(c, 0.0) for c in COUNTERS.get(args.technique, [])})

@@ -204,6 +204,20 @@ Texture Texture::createBufferView(std::string_view name, const Buffer& buffer, G
     return t;
 }
 
+Texture Texture::createView(std::string_view name, const Texture& source, GLenum format) {
+    BOUNCE_CHECK(static_cast<bool>(source), "texture view '{}' views a texture", name);
+    GLuint id = 0;
+    glGenTextures(1, &id);  // glTextureView wants a name that was never bound (not glCreateTextures')
+    glTextureView(id, source.m_desc.target, source.id(), format, 0, static_cast<GLuint>(source.m_desc.levels), 0,
+                  source.m_desc.target == GL_TEXTURE_2D ? 1u : static_cast<GLuint>(source.m_desc.depth));
+    Texture t;
+    t.m_handle = Handle<TextureTraits>(id);
+    t.m_desc = source.m_desc;
+    t.m_desc.format = format;
+    label(GL_TEXTURE, id, name);
+    return t;
+}
+
 Texture Texture::create(std::string_view name, const TextureDesc& desc) {
     BOUNCE_CHECK(desc.width > 0 && desc.height > 0 && desc.depth > 0 && desc.levels > 0, "texture '{}' has size {}x{}x{}",
                  name, desc.width, desc.height, desc.depth);

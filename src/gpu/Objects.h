@@ -71,6 +71,10 @@ public:
     // A buffer texture (samplerBuffer) over all of `buffer`, read as `format` texels: its storage is the
     // buffer's (counted there), so the buffer must outlive the view.
     static Texture createBufferView(std::string_view name, const Buffer& buffer, GLenum format);
+    // A view of all of `source` (immutable storage, one layer or 2D) read as `format`, a format of the
+    // same view class (GL 4.3 texture views: R32F as R32UI for image atomics). Its storage is the
+    // source's (counted there), so the source must outlive the view.
+    static Texture createView(std::string_view name, const Texture& source, GLenum format);
     void bind(GLuint unit) const { glBindTextureUnit(unit, m_handle.id()); }
     void bindImage(GLuint unit, GLenum access, int level = 0, bool layered = false, int layer = 0) const;
     // Depth-compare sampling (sampler2DShadow / samplerCubeShadow).

@@ -10,6 +10,10 @@ namespace bounce::gpu {
 #define SPLAT_FILTER_TENT 1
 #define SPLAT_FILTER_GAUSSIAN 2
 
+// Triangles per culling cluster (ClusterSet), also depth_raster.comp's workgroup size: one
+// invocation per triangle of a (bundle, cluster) pair.
+#define SPLAT_CLUSTER_TRIANGLES 32
+
 #define SPLAT_ESTIMATE_NORMALIZED 0  // the document: sum(w S) / sum(w), times an exposure
 #define SPLAT_ESTIMATE_FLUX 1        // bounce's calibrated mode: rho/pi sum Phi w_n cos V
 

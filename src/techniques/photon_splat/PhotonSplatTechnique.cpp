@@ -5,7 +5,8 @@
 //  2. stratify (CPU, optional, §3.2.1/§4.2): 2x2x2 blocks with a cell under the threshold merge.
 //  3. bundles (CPU, §3.3, Fig. 4): a ray per photon to its hit, the step back, the volume
 //     (BundleVolume), the clusters of the scene that meet it (ClusterSet).
-//  4. depth-maps: one r x r tile of a depth atlas per bundle, one multi-draw per batch (depth.vert).
+//  4. depth-maps: one r x r tile of a depth atlas per bundle, one multi-draw per batch (depth.vert),
+//     or the same tiles rasterised in a compute pass (depthMaps=compute, llvmpipe: depth_raster.comp).
 //  5. hit-ranges + splat (§3.3/§4.3): each volume's back faces; per pixel the tolerant depth test,
 //     the filter weight, the Lambert splat, added with the weight in alpha (splat.vert/.frag).
 //  6. resolve (§3.4/§4.4): the flux estimate, or the document's normalisation; debug views.
@@ -14,7 +15,8 @@
 //  - default estimate=flux, calibrated; the document's normalized has no physical scale.
 //  - b = d by default (bundle from its photon) and D past the scene's box; b < d tilts the near plane.
 //  - no bundle ray starts behind its photon's surface; photons whose ray escapes keep their bundle.
-//  - the depth test uses the receiver's plane at the texel centre; maps in an atlas, culled clusters.
+//  - the depth test uses the receiver's plane at the texel centre; maps in an atlas, culled clusters;
+//    on llvmpipe the maps are rasterised in a compute pass.
 //  - photons from emissive surfaces and textured area lights too; 16384 photons, blur 5 by default.
 // References: seed 004 (shared/seeds), spec shared/specs/photon-splatting-orthographic-bundles.md.
 #include "techniques/photon_splat/PhotonSplatTechnique.h"
@@ -42,11 +44,12 @@ namespace {
 constexpr float kAutoMapSizeFraction = 0.05f;  // bundle width 2h = a twentieth of the scene diagonal (bias/noise, measured: docs)
 constexpr float kAutoToleranceTexels = 0.05f;  // depth tolerance past the receiver plane: 1/20 texel (float rounding, curvature)
 constexpr float kEmitterOffsetFraction = 1e-4f;  // emitter plane offset: 1e-4 of the scene diagonal (0.1 mm per metre)
-constexpr uint32_t kClusterTriangles = 64;     // triangles per culling cluster
+constexpr uint32_t kClusterTriangles = SPLAT_CLUSTER_TRIANGLES;  // triangles per culling cluster (splat_shared.h)
 constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels (64 MB of DEPTH32F)
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
 constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first hits' depths +- 4 texels (slopes to tan 76 degrees over a half texel diagonal... and then some)
 constexpr int kDepthClipPlanes = 7;
+constexpr size_t kMaxWorkgroupsPerDimension = 65535;  // GL 4.5's minimum MAX_COMPUTE_WORK_GROUP_COUNT (each axis)
 constexpr float kOverlapHeatMax = 64.0f;       // the overlap view's red: bundles per pixel (the defaults reach ~25 mean, ~80 at most)            // depth.vert's clip distances: tile (4), near, far, emitter
 
 template <size_t N>
@@ -76,6 +79,8 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a twentieth of the scene diagonal", 0.0f, 1.0e6f);
     v.field("mapDepth", m_mapDepth, "bundle depth D past its near plane, metres; 0 = past the scene's bounding box", 0.0f, 1.0e6f);
     v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres (the near plane then lies parallel to the hit surface); 0 = the hit distance d: the bundle starts at its photon", 0.0f, 1.0e6f);
+    v.field("depthMaps", m_depthMaps, "how the bundles' depth maps are made: raster (a multi-draw into the atlas's tiles, the document's) or compute (the same maps rasterised in a compute pass: faster on llvmpipe, the default there)", kDepthMaps,
+            PerProfile<std::string_view>{"compute", "raster"});
     v.field("mapResolution", m_mapResolution, "texels per side of each bundle's depth map (document: 4 and 32 tested)", 4, 32);
     v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver whose plane lies up to this far behind the stored depth at the texel's centre is lit, metres; 0 = 1/20 texel", 0.0f, 1.0e6f);
     v.field("filter", m_filter, "splat weight over the cross-section: gaussian (sigma = h/2), tent, box (document Fig. 6)", kFilters);
@@ -108,6 +113,10 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     const int capacity = std::max(1, m_injection == "rsm" ? 6 * m_vplGrid * m_vplGrid : m_photonCount * m_bounces);
     BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "techniques/photon_splat/depth.vert"},
                                                                          {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
+    const bool computeMaps = m_depthMaps == "compute";
+    if (computeMaps) {
+        BOUNCE_TRY(m_rasterProgram, gl::Program::build({"photon-splat.depthRaster", {{GL_COMPUTE_SHADER, "techniques/photon_splat/depth_raster.comp"}}}));
+    }
     BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
                                                                    {GL_FRAGMENT_SHADER, "techniques/photon_splat/splat.frag"}}}));
     BOUNCE_TRY(m_rangeProgram, gl::Program::build({"photon-splat.range", {{GL_COMPUTE_SHADER, "techniques/photon_splat/tile_range.comp"}}}));
@@ -121,15 +130,19 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     m_tiles.x = std::min(maxTiles, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(capacity)))));
     m_tiles.y = std::min(maxTiles, (capacity + m_tiles.x - 1) / m_tiles.x);
     gl::TextureDesc maps;
-    maps.format = GL_DEPTH_COMPONENT32F;
+    maps.format = computeMaps ? GL_R32F : GL_DEPTH_COMPONENT32F;  // read as .r by the passes after either way
     maps.width = m_tiles.x * r;
     maps.height = m_tiles.y * r;
     maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
     m_maps = gl::Texture::create("photon-splat.depthAtlas", maps);
-    m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
-    m_mapFbo.attach(GL_DEPTH_ATTACHMENT, m_maps);
-    m_mapFbo.setDrawBuffers(0);
-    BOUNCE_CHECK(m_mapFbo.complete(), "photon-splat depth atlas framebuffer");
+    if (computeMaps) {
+        m_mapsUint = gl::Texture::createView("photon-splat.depthAtlasUint", m_maps, GL_R32UI);
+    } else {
+        m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
+        m_mapFbo.attach(GL_DEPTH_ATTACHMENT, m_maps);
+        m_mapFbo.setDrawBuffers(0);
+        BOUNCE_CHECK(m_mapFbo.complete(), "photon-splat depth atlas framebuffer");
+    }
     // The scene's triangles in clusters, drawn per bundle by one multi-draw per batch.
     m_clusters = photonsplat::ClusterSet::build(ctx.scene, kClusterTriangles);
     const std::vector<uint32_t>& indices = m_clusters.indices();
@@ -276,17 +289,13 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     int batches = 0;
     double clusterDraws = 0.0, cullMs = 0.0;
     std::vector<uint32_t>& kept = m_cull.kept;
-    std::vector<uint32_t>& perCluster = m_cull.perCluster;
     std::vector<glm::uvec2>& pairs = m_cull.pairs;  // (cluster, bundle)
-    std::vector<DrawCommand>& commands = m_cull.commands;
-    std::vector<glm::uvec2>& drawData = m_cull.drawData;
     for (int first = 0; first < count; first += tiles, ++batches) {
         const int n = std::min(tiles, count - first);
         {
             auto s = ctx.timers.scope("depth-maps");
-            // Cull: per bundle, the clusters whose box meets its volume (CPU); then one instanced
-            // indirect command per cluster, its instances the bundles that keep it (grouped by a
-            // counting sort, so that baseInstance + gl_InstanceID reads them).
+            // Cull: per bundle, the clusters whose box meets its volume (CPU); then the pairs as
+            // draws (raster) or as workgroups (compute).
             const auto t0 = std::chrono::steady_clock::now();
             pairs.clear();
             for (int i = 0; i < n; ++i) {
@@ -295,57 +304,20 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                 else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) kept.push_back(c);
                 for (uint32_t c : kept) pairs.push_back({c, static_cast<uint32_t>(first + i)});
             }
-            perCluster.assign(m_clusters.clusters().size() + 1, 0u);
-            for (const glm::uvec2& pr : pairs) ++perCluster[pr.x + 1];
-            std::partial_sum(perCluster.begin(), perCluster.end(), perCluster.begin());
-            commands.clear();
-            for (size_t c = 0; c + 1 < perCluster.size(); ++c)
-                if (perCluster[c + 1] > perCluster[c]) {
-                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
-                    commands.push_back({cl.indexCount, perCluster[c + 1] - perCluster[c], cl.firstIndex, 0, perCluster[c]});
-                }
-            drawData.resize(pairs.size());
-            for (const glm::uvec2& pr : pairs) drawData[perCluster[pr.x]++] = {pr.y, m_clusters.clusters()[pr.x].object};
             clusterDraws += static_cast<double>(pairs.size());
-            cullMs += msSince(t0);
-            if (std::max(commands.size(), drawData.size()) > m_drawCapacity) {
-                m_drawCapacity = std::max(std::max(commands.size(), drawData.size()), 2 * m_drawCapacity);
-                m_drawCommands = gl::Buffer::create("photon-splat.drawCommands", m_drawCapacity * sizeof(DrawCommand));
-                m_drawData = gl::Buffer::create("photon-splat.drawData", m_drawCapacity * sizeof(glm::uvec2));
-                glVertexArrayVertexBuffer(m_depthVao.id(), 0, m_drawData.id(), 0, sizeof(glm::uvec2));
-                glVertexArrayBindingDivisor(m_depthVao.id(), 0, 1);
-                glEnableVertexArrayAttrib(m_depthVao.id(), 0);
-                glVertexArrayAttribIFormat(m_depthVao.id(), 0, 2, GL_UNSIGNED_INT, 0);
-                glVertexArrayAttribBinding(m_depthVao.id(), 0, 0);
-            }
-            if (!commands.empty()) {
-                m_drawCommands.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
-                m_drawData.upload(0, drawData.size() * sizeof(glm::uvec2), drawData.data());
-            }
-            m_mapFbo.bind();
-            glViewport(0, 0, m_maps.width(), m_maps.height());
-            const float one = 1.0f;
-            glDepthMask(GL_TRUE);  // the clear obeys the depth write mask an earlier pass may have left off
-            glClearNamedFramebufferfv(m_mapFbo.id(), GL_DEPTH, 0, &one);
-            if (!commands.empty()) {
-                m_depthProgram.use();
-                m_depthProgram.set("u_first", first);
-                m_depthProgram.set("u_tiles", m_tiles);
-                m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
-                ctx.sceneGpu.vertices().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
-                ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
-                glEnable(GL_DEPTH_TEST);
-                glDepthFunc(GL_LESS);
-                glDisable(GL_CULL_FACE);  // back faces occlude too: the volume may start inside geometry (4.3)
-                glDisable(GL_BLEND);
-                glDisable(GL_STENCIL_TEST);
-                for (int k = 0; k < kDepthClipPlanes; ++k) glEnable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
-                m_depthVao.bind();
-                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_drawCommands.id());
-                glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
-                glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-                for (int k = 0; k < kDepthClipPlanes; ++k) glDisable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
-                glDisable(GL_DEPTH_TEST);
+            if (m_depthMaps == "compute") {
+                std::vector<glm::uvec4>& work = m_cull.rasterPairs;
+                work.clear();
+                for (const glm::uvec2& pr : pairs) {
+                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[pr.x];
+                    work.push_back({pr.y, cl.object, cl.firstIndex, cl.indexCount});
+                }
+                cullMs += msSince(t0);
+                renderMapsInCompute(ctx, first, work);
+            } else {
+                buildDraws(pairs);
+                cullMs += msSince(t0);
+                renderMapsByRaster(ctx, first);
             }
         }
         const bool useRanges = m_estimate == "flux";
@@ -475,6 +447,101 @@ std::string_view PhotonSplatTechnique::frameReadbackReason() const {
     // reads the shared RSM's VPLs back as photons, because the bundles are built on the CPU (pass 3).
     if (m_injection == "rsm") return "injection=rsm: the RSM's VPLs are read back as photons for the CPU's bundle pass";
     return {};
+}
+
+// depthMaps=raster: one instanced indirect command per cluster, its instances the bundles that keep
+// it (grouped by a counting sort, so that baseInstance + gl_InstanceID reads them).
+void PhotonSplatTechnique::buildDraws(const std::vector<glm::uvec2>& pairs) {
+    std::vector<uint32_t>& perCluster = m_cull.perCluster;
+    std::vector<DrawCommand>& commands = m_cull.commands;
+    std::vector<glm::uvec2>& drawData = m_cull.drawData;
+    perCluster.assign(m_clusters.clusters().size() + 1, 0u);
+    for (const glm::uvec2& pr : pairs) ++perCluster[pr.x + 1];
+    std::partial_sum(perCluster.begin(), perCluster.end(), perCluster.begin());
+    commands.clear();
+    for (size_t c = 0; c + 1 < perCluster.size(); ++c)
+        if (perCluster[c + 1] > perCluster[c]) {
+            const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
+            commands.push_back({cl.indexCount, perCluster[c + 1] - perCluster[c], cl.firstIndex, 0, perCluster[c]});
+        }
+    drawData.resize(pairs.size());
+    for (const glm::uvec2& pr : pairs) drawData[perCluster[pr.x]++] = {pr.y, m_clusters.clusters()[pr.x].object};
+}
+
+// depthMaps=raster: the batch's tiles by one multi-draw (depth.vert, render/shadow_depth.frag).
+void PhotonSplatTechnique::renderMapsByRaster(FrameContext& ctx, int first) {
+    const std::vector<DrawCommand>& commands = m_cull.commands;
+    const std::vector<glm::uvec2>& drawData = m_cull.drawData;
+    if (std::max(commands.size(), drawData.size()) > m_drawCapacity) {
+        m_drawCapacity = std::max(std::max(commands.size(), drawData.size()), 2 * m_drawCapacity);
+        m_drawCommands = gl::Buffer::create("photon-splat.drawCommands", m_drawCapacity * sizeof(DrawCommand));
+        m_drawData = gl::Buffer::create("photon-splat.drawData", m_drawCapacity * sizeof(glm::uvec2));
+        glVertexArrayVertexBuffer(m_depthVao.id(), 0, m_drawData.id(), 0, sizeof(glm::uvec2));
+        glVertexArrayBindingDivisor(m_depthVao.id(), 0, 1);
+        glEnableVertexArrayAttrib(m_depthVao.id(), 0);
+        glVertexArrayAttribIFormat(m_depthVao.id(), 0, 2, GL_UNSIGNED_INT, 0);
+        glVertexArrayAttribBinding(m_depthVao.id(), 0, 0);
+    }
+    if (!commands.empty()) {
+        m_drawCommands.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
+        m_drawData.upload(0, drawData.size() * sizeof(glm::uvec2), drawData.data());
+    }
+    m_mapFbo.bind();
+    glViewport(0, 0, m_maps.width(), m_maps.height());
+    const float one = 1.0f;
+    glDepthMask(GL_TRUE);  // the clear obeys the depth write mask an earlier pass may have left off
+    glClearNamedFramebufferfv(m_mapFbo.id(), GL_DEPTH, 0, &one);
+    if (commands.empty()) return;
+    m_depthProgram.use();
+    m_depthProgram.set("u_first", first);
+    m_depthProgram.set("u_tiles", m_tiles);
+    m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+    ctx.sceneGpu.vertices().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+    ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);  // back faces occlude too: the volume may start inside geometry (4.3)
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+    for (int k = 0; k < kDepthClipPlanes; ++k) glEnable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+    m_depthVao.bind();
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_drawCommands.id());
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    for (int k = 0; k < kDepthClipPlanes; ++k) glDisable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(k));
+    glDisable(GL_DEPTH_TEST);
+}
+
+// depthMaps=compute: the same tiles by depth_raster.comp, a workgroup per (bundle, cluster) pair.
+void PhotonSplatTechnique::renderMapsInCompute(FrameContext& ctx, int first, const std::vector<glm::uvec4>& work) {
+    const float one = 1.0f;
+    // Shader image writes of the previous batch, then this clear (GL 4.5 7.13.2: a texture update).
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glClearTexImage(m_maps.id(), 0, GL_RED, GL_FLOAT, &one);
+    if (work.empty()) return;
+    if (work.size() > m_rasterCapacity) {
+        m_rasterCapacity = std::max(work.size(), 2 * m_rasterCapacity);
+        m_rasterPairs = gl::Buffer::create("photon-splat.rasterPairs", m_rasterCapacity * sizeof(glm::uvec4));
+    }
+    m_rasterPairs.upload(0, work.size() * sizeof(glm::uvec4), work.data());
+    m_rasterProgram.use();
+    m_rasterProgram.set("u_first", first);
+    m_rasterProgram.set("u_tiles", m_tiles);
+    m_rasterProgram.set("u_resolution", m_mapResolution);
+    m_rasterProgram.set("u_pairCount", static_cast<GLuint>(work.size()));
+    m_bundleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH0);
+    ctx.sceneGpu.vertices().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH1);
+    m_rasterPairs.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH2);
+    m_clusterIndices.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
+    ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
+    m_mapsUint.bindImage(BINDING_IMG0, GL_READ_WRITE);
+    // GL 4.5 guarantees 65535 workgroups per dimension: rows of that many.
+    const size_t pairs = work.size();
+    const GLuint x = static_cast<GLuint>(std::min<size_t>(pairs, kMaxWorkgroupsPerDimension));
+    const GLuint y = static_cast<GLuint>((pairs + x - 1) / x);
+    glDispatchCompute(x, y, 1);
+    // The tile ranges and the splat read the atlas through samplers.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 }  // namespace bounce

@@ -42,6 +42,7 @@ public:
     static constexpr std::array<std::string_view, 2> kEstimates{"flux", "normalized"};
     static constexpr std::array<std::string_view, 4> kDebugViews{"none", "overlap", "accumulation", "grid"};
     static constexpr std::array<std::string_view, 2> kInjections{"rays", "rsm"};
+    static constexpr std::array<std::string_view, 2> kDepthMaps{"raster", "compute"};
 
     // For tests: the photons and bundles of the last frame.
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
@@ -58,9 +59,13 @@ private:
     void updateGeometry(FrameContext& ctx);
     // Method B of 3.2: the reflective shadow map's regular VPLs as photons (GPU, read back).
     std::vector<photonsplat::Photon> rsmPhotons(FrameContext& ctx, uint64_t seed);
+    void buildDraws(const std::vector<glm::uvec2>& pairs);
+    void renderMapsByRaster(FrameContext& ctx, int first);
+    void renderMapsInCompute(FrameContext& ctx, int first, const std::vector<glm::uvec4>& work);
 
     // Settings (docs/techniques/photon-splat.md gives the sources of the defaults).
     std::string m_injection{"rays"};
+    std::string m_depthMaps{"compute"};  // a device-profile default: raster on a GPU
     int m_rsmSize = 256;
     int m_vplGrid = 32;
     int m_photonCount = 16384;
@@ -107,6 +112,7 @@ private:
         std::vector<glm::uvec2> pairs;     // (cluster, bundle)
         std::vector<DrawCommand> commands;
         std::vector<glm::uvec2> drawData;  // (bundle, object) per instance
+        std::vector<glm::uvec4> rasterPairs;  // depthMaps=compute: (bundle, object, first index, index count)
     } m_cull;
     photonsplat::BundleScratch m_bundleScratch;
     std::vector<gpu::BundleGpu> m_gpuBundles;
@@ -115,16 +121,19 @@ private:
     photonsplat::ClusterSet m_clusters;
     gl::Buffer m_clusterIndices, m_drawCommands, m_drawData;
     size_t m_drawCapacity = 0;  // commands the two draw buffers hold
+    gl::Buffer m_rasterPairs;   // depthMaps=compute: CullScratch::rasterPairs
+    size_t m_rasterCapacity = 0;
     gl::VertexArray m_depthVao;
     int m_pointsWritten = 0;    // texels of m_bundlePoints the last frame wrote
     gl::Buffer m_bundleBuffer;
     gl::Buffer m_ranges;  // per bundle: the depth range of its first hits (tile_range.comp)
     gl::Texture m_maps, m_accum, m_stats, m_blurTemp;
+    gl::Texture m_mapsUint;  // depthMaps=compute: m_maps (R32F) viewed as R32UI for depth_raster.comp's atomics
     // The viewer's "photon-splat.bundles": RGBA32F 2D array (one layer), texel i = bundle i's hit point
     // (xyz, w = 1), w = 0 past the frame's bundles.
     gl::Texture m_bundlePoints;
     gl::Framebuffer m_mapFbo, m_accumFbo, m_outFbo;
-    gl::Program m_depthProgram, m_rangeProgram, m_splat, m_resolve, m_blurProgram;
+    gl::Program m_depthProgram, m_rasterProgram, m_rangeProgram, m_splat, m_resolve, m_blurProgram;
 };
 
 }  // namespace bounce
