@@ -297,21 +297,26 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             // Cull: per bundle, the clusters whose box meets its volume (CPU); then the pairs as
             // draws (raster) or as workgroups (compute).
             const auto t0 = std::chrono::steady_clock::now();
+            const bool compute = m_depthMaps == "compute";
+            std::vector<glm::uvec4>& work = m_cull.rasterPairs;  // compute: the pairs as the workgroups read them
             pairs.clear();
+            work.clear();
             for (int i = 0; i < n; ++i) {
                 kept.clear();
                 if (m_cullClusters) m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
                 else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) kept.push_back(c);
-                for (uint32_t c : kept) pairs.push_back({c, static_cast<uint32_t>(first + i)});
-            }
-            clusterDraws += static_cast<double>(pairs.size());
-            if (m_depthMaps == "compute") {
-                std::vector<glm::uvec4>& work = m_cull.rasterPairs;
-                work.clear();
-                for (const glm::uvec2& pr : pairs) {
-                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[pr.x];
-                    work.push_back({pr.y, cl.object, cl.firstIndex, cl.indexCount});
+                const auto bundle = static_cast<uint32_t>(first + i);
+                for (uint32_t c : kept) {
+                    if (!compute) {
+                        pairs.push_back({c, bundle});
+                        continue;
+                    }
+                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
+                    work.push_back({bundle, cl.object, cl.firstIndex, cl.indexCount});
                 }
+            }
+            clusterDraws += static_cast<double>(compute ? work.size() : pairs.size());
+            if (compute) {
                 cullMs += msSince(t0);
                 renderMapsInCompute(ctx, first, work);
             } else {
