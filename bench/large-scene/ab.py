@@ -82,7 +82,12 @@ def main():
                 samples[tag].append(s)
                 print(light, tag, rep, json.dumps(s), flush=True)
             identical = identical and filecmp.cmp(os.path.join(tmp, f"{light}-a-{rep}-n.exr"), os.path.join(tmp, f"{light}-b-{rep}-n.exr"), shallow=False)
-        results[light] = {"imagesByteIdentical": identical, "raw": samples,
+        # b's last image against a's (the same frame): how far apart the two are when not byte-identical.
+        cmp = json.loads(subprocess.run([args.b, "compare", "--json", os.path.join(tmp, f"{light}-b-0-n.exr"),
+                                         os.path.join(tmp, f"{light}-a-0-n.exr")], check=True, capture_output=True,
+                                        text=True).stdout)["metrics"]
+        results[light] = {"imagesByteIdentical": identical, "bAgainstA": {k: cmp[k] for k in ("relMse", "energy", "flipLdr")},
+                          "raw": samples,
                           **{tag: {k: summary([s[k] for s in samples[tag]]) for k in samples[tag][0]} for tag in ("a", "b")}}
     rec["results"] = results
     rec["loadavg_end"] = os.getloadavg()

@@ -83,6 +83,6 @@ void main() {
             vec3 clip = l.x * c0.clip + l.y * c1.clip + l.z * c2.clip;
             if (any(lessThan(clip, vec3(0.0)))) continue;
             if (materialMasked(material, l.x * c0.uv + l.y * c1.uv + l.z * c2.uv)) continue;
-            imageAtomicMin(i_maps, origin + ivec2(i, j), floatBitsToUint(depth));
+            imageAtomicMin(i_maps, origin + ivec2(i, j), floatBitsToUint(abs(depth)));  // abs: -0.0's bits order last
         }
 }

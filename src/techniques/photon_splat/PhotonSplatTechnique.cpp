@@ -111,11 +111,12 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     const int r = m_mapResolution;
     // Bundles per frame at most: photons times stored bounces, or one per VPL of a cube RSM.
     const int capacity = std::max(1, m_injection == "rsm" ? 6 * m_vplGrid * m_vplGrid : m_photonCount * m_bounces);
-    BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "techniques/photon_splat/depth.vert"},
-                                                                         {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
-    const bool computeMaps = m_depthMaps == "compute";
+    const bool computeMaps = m_depthMaps == "compute";  // the program of the other path is not built
     if (computeMaps) {
         BOUNCE_TRY(m_rasterProgram, gl::Program::build({"photon-splat.depthRaster", {{GL_COMPUTE_SHADER, "techniques/photon_splat/depth_raster.comp"}}}));
+    } else {
+        BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "techniques/photon_splat/depth.vert"},
+                                                                             {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
     }
     BOUNCE_TRY(m_splat, gl::Program::build({"photon-splat.splat", {{GL_VERTEX_SHADER, "techniques/photon_splat/splat.vert"},
                                                                    {GL_FRAGMENT_SHADER, "techniques/photon_splat/splat.frag"}}}));
