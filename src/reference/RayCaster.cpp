@@ -93,6 +93,25 @@ void RayCaster::closestHitsChunk(std::span<const CastRay> rays, std::span<std::o
     }
 }
 
+void RayCaster::closestDistances(std::span<const CastRay> rays, std::span<float> distances) const {
+    BOUNCE_CHECK(rays.size() == distances.size(), "closestDistances: {} rays but {} results", rays.size(), distances.size());
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    std::array<RTCRayHit, kStreamChunk> stream;
+    for (size_t base = 0; base < rays.size(); base += kStreamChunk) {
+        const size_t n = std::min(kStreamChunk, rays.size() - base);
+        for (size_t i = 0; i < n; ++i) {
+            const CastRay& r = rays[base + i];
+            setRay(stream[i].ray, r.origin, r.direction, r.tMin, r.tMax);
+            stream[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            stream[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect1M(m_embree.handle(), &context, stream.data(), static_cast<unsigned>(n), sizeof(RTCRayHit));
+        for (size_t i = 0; i < n; ++i)
+            distances[base + i] = stream[i].hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity() : stream[i].ray.tfar;
+    }
+}
+
 void RayCaster::occludedChunk(std::span<const Segment> segments, std::span<uint8_t> results) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

@@ -57,6 +57,9 @@ public:
     // Rays go to Embree as streams (rtcIntersect1M / rtcOccluded1M); big batches use every core.
     void closestHits(std::span<const CastRay> rays, std::span<std::optional<RayHit>> results) const;
     void occluded(std::span<const Segment> segments, std::span<uint8_t> results) const;
+    // The distance t to each ray's closest hit (infinity where it hits nothing), on the calling thread
+    // (a caller that parallelises over its own batches): no hit record is made.
+    void closestDistances(std::span<const CastRay> rays, std::span<float> distances) const;
 
     size_t triangleCount() const noexcept { return m_triangleCount; }
 

@@ -301,7 +301,7 @@ TEST_F(PhotonSplatGpuTest, ByteCountersReportWhatIsAllocated) {
         glGetTextureLevelParameteriv(t.depthAtlas().id(), 0, GL_TEXTURE_WIDTH, &width);
         glGetTextureLevelParameteriv(t.depthAtlas().id(), 0, GL_TEXTURE_HEIGHT, &height);
         glGetTextureLevelParameteriv(t.depthAtlas().id(), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-        EXPECT_TRUE(format == GL_R32F || format == GL_DEPTH_COMPONENT32F) << format;  // depthMaps=compute / raster
+        EXPECT_TRUE(format == GL_R32F || format == GL_DEPTH_COMPONENT32F) << format;  // depthMaps=rays, compute / raster
         EXPECT_EQ(c.at("depthAtlasBytes"), 4.0 * width * height);
         EXPECT_GE(static_cast<double>(width) * height, 64.0 * photons);  // an 8 x 8 tile per bundle
     }
@@ -387,7 +387,7 @@ TEST_F(PhotonSplatGpuTest, BlurSpreadsTheFootprintAndKeepsItsIntegral) {
     EXPECT_LT(worst, 1e-4f * level);  // float rounding of nine products
 }
 
-// The depth atlas's texels (depth in [0, 1]): a depth texture (depthMaps=raster) or R32F (compute).
+// The depth atlas's texels (depth in [0, 1]): a depth texture (depthMaps=raster) or R32F (compute, rays).
 constexpr float kRoundingApart = 1e-5f;  // depth (of [0, 1]): the two paths' float rounding stays under 1e-6
 
 static std::vector<float> readAtlas(const gl::Texture& t) {
@@ -398,14 +398,14 @@ static std::vector<float> readAtlas(const gl::Texture& t) {
 }
 
 TEST_F(PhotonSplatGpuTest, CulledDepthMapsEqualTheMapsOfEveryCluster) {
-    // The CPU cull (ClusterSet::cull, mayOverlap) only drops (bundle, cluster) draws whose every
-    // triangle depth.vert clips: the depth atlas with it equals, bit for bit, the atlas with every
+    // The CPU cull (ClusterSet::cull, mayOverlap) only drops (bundle, cluster) pairs whose every
+    // triangle depth.vert and depth_raster.comp clip (here depthMaps=compute; raster shares the cull): the depth atlas with it equals, bit for bit, the atlas with every
     // cluster drawn into every bundle's map. The smallest courtyard (2,128 triangles: arcades, columns
     // and the alpha-masked foliage) under its sun, 500 photons; the cull must also have dropped draws.
     auto scene = loadScene("courtyard", {{"triangles", "2128"}});
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     auto atlas = [&](bool cull, double& draws) {
-        auto p = makePipeline(*scene, "photon-splat", {{"photons", "500"}}, 32);
+        auto p = makePipeline(*scene, "photon-splat", {{"photons", "500"}, {"depthMaps", "compute"}}, 32);
         splatOf(*p).setCullClusters(cull);
         draws = p->renderFrame(0).counters.at("clusterDraws");
         return readAtlas(splatOf(*p).depthAtlas());
@@ -423,14 +423,15 @@ TEST_F(PhotonSplatGpuTest, CulledDepthMapsEqualTheMapsOfEveryCluster) {
     EXPECT_LT(culledDraws, 0.5 * allDraws) << culledDraws << " of " << allDraws;
 }
 
-TEST_F(PhotonSplatGpuTest, ComputeDepthMapsEqualTheRasterisedMaps) {
-    // depthMaps=compute (depth_raster.comp, llvmpipe's default) makes the maps depthMaps=raster
-    // (depth.vert and the rasteriser, a GPU's default) makes: the same scene and photons as above
-    // (arcades, columns, alpha-masked foliage), every texel compared. Measured: of 7,522 texels written,
-    // 8 only by the rasteriser, none only by the compute pass, 14 more than 1e-5 apart (texel centres on
-    // a clip plane or a shared edge, decided by different arithmetic), the rest within float rounding;
-    // the images 2e-6 apart in relMSE on courtyard (docs/techniques/photon-splat.md). Bound: 1 % of the
-    // written texels for each kind of disagreement (3x the measured worst).
+TEST_F(PhotonSplatGpuTest, ComputedAndTracedDepthMapsEqualTheRasterisedMaps) {
+    // depthMaps=compute (depth_raster.comp) and depthMaps=rays (DepthRays: llvmpipe's default) make the
+    // maps depthMaps=raster (depth.vert and the rasteriser, a GPU's default) makes: the same scene and
+    // photons as above (arcades, columns, alpha-masked foliage), every texel compared. Measured, of 7,522
+    // texels written: compute 8 only by the rasteriser, none only by the compute pass, 14 more than 1e-5
+    // apart; rays 8, none, 13 (texel centres on a clip plane or a shared edge, decided by different
+    // arithmetic), the rest within float rounding; the images 2e-6 apart in relMSE on courtyard
+    // (docs/techniques/photon-splat.md). Bound: 1 % of the written texels for each kind of disagreement
+    // (3x the measured worst).
     auto scene = loadScene("courtyard", {{"triangles", "2128"}});
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     auto atlas = [&](const char* mode) {
@@ -438,21 +439,23 @@ TEST_F(PhotonSplatGpuTest, ComputeDepthMapsEqualTheRasterisedMaps) {
         p->renderFrame(0);
         return readAtlas(splatOf(*p).depthAtlas());
     };
-    const std::vector<float> raster = atlas("raster"), compute = atlas("compute");
-    ASSERT_EQ(raster.size(), compute.size());
-    size_t written = 0, onlyRaster = 0, onlyCompute = 0, apart = 0;
-    for (size_t i = 0; i < raster.size(); ++i) {
-        const bool r = raster[i] < 1.0f, c = compute[i] < 1.0f;
-        written += r ? 1 : 0;
-        onlyRaster += r && !c ? 1 : 0;
-        onlyCompute += c && !r ? 1 : 0;
-        apart += r && c && std::abs(raster[i] - compute[i]) > kRoundingApart ? 1 : 0;
+    const std::vector<float> raster = atlas("raster");
+    for (const char* mode : {"compute", "rays"}) {
+        const std::vector<float> other = atlas(mode);
+        ASSERT_EQ(raster.size(), other.size());
+        size_t written = 0, onlyRaster = 0, onlyOther = 0, apart = 0;
+        for (size_t i = 0; i < raster.size(); ++i) {
+            const bool r = raster[i] < 1.0f, c = other[i] < 1.0f;
+            written += r ? 1 : 0;
+            onlyRaster += r && !c ? 1 : 0;
+            onlyOther += c && !r ? 1 : 0;
+            apart += r && c && std::abs(raster[i] - other[i]) > kRoundingApart ? 1 : 0;
+        }
+        std::printf("depth maps (%s): %zu texels written by the rasteriser, %zu by it alone, %zu by %s alone, %zu more than %g apart\n",
+                    mode, written, onlyRaster, onlyOther, mode, apart, static_cast<double>(kRoundingApart));
+        EXPECT_GT(written, raster.size() / 10) << "the maps hold geometry";
+        EXPECT_LE(onlyRaster, written / 100) << mode;
+        EXPECT_LE(onlyOther, written / 100) << mode;
+        EXPECT_LE(apart, written / 100) << mode;
     }
-    std::printf("depth maps: %zu texels written by the rasteriser, %zu by it alone, %zu by the compute pass alone, %zu more than "
-                "%g apart\n",
-                written, onlyRaster, onlyCompute, apart, static_cast<double>(kRoundingApart));
-    EXPECT_GT(written, raster.size() / 10) << "the maps hold geometry";
-    EXPECT_LE(onlyRaster, written / 100);
-    EXPECT_LE(onlyCompute, written / 100);
-    EXPECT_LE(apart, written / 100);
 }

@@ -6,12 +6,14 @@
 #include "scene/SceneLoader.h"
 #include "reference/Rng.h"
 #include "techniques/photon_splat/BundleVolume.h"
+#include "techniques/photon_splat/DepthRays.h"
 #include "techniques/photon_splat/PhotonInjection.h"
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace bounce;
 using namespace bounce::photonsplat;
@@ -426,4 +428,97 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
     // leaves 15 boxes for rounding across compilers and catches both.
     EXPECT_GE(culled, 6310) << "of " << boxes;
     EXPECT_EQ(boxes, 8000);
+}
+
+TEST(PhotonSplatDepthRays, TheTexelRaysIntervalIsTheVolumeAlongIt) {
+    // depthMaps=rays traces each texel centre's ray over [a, b] (texelRayInterval): random bundles with
+    // tilted near planes and photons' surfaces at random angles, random points of the square. Sampled
+    // along the line over the map's depth range [zNear, zFar], a point lies in the volume
+    // (BundleVolume::contains) exactly when it lies in [a, b] (points within 1e-3 of an end skipped).
+    Rng rng(21, 0, 0);
+    int intervals = 0, empty = 0;
+    for (int i = 0; i < 200; ++i) {
+        auto unit = [&] {
+            const float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+            return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+        };
+        const glm::vec3 p{4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f};
+        const glm::vec3 n = unit();
+        glm::vec3 w = unit();
+        if (glm::dot(n, w) < 0.0f) w = -w;
+        Photon ph;
+        ph.position = p;
+        ph.normal = n;
+        ph.direction = w;
+        const float hitDistance = 1.0f + rng.next();
+        const glm::vec3 tilt = unit();
+        VolumeSettings vs;
+        vs.half = 0.1f + 0.4f * rng.next();
+        vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
+        vs.emitterOffset = 1e-3f;
+        vs.lo = glm::vec3(-4.0f);
+        vs.hi = glm::vec3(4.0f);
+        Bundle b;
+        const BundleVolume v = volumeOfHit(ph, hitDistance, glm::normalize(-w + 0.8f * tilt), vs, b);
+        for (int k = 0; k < 20; ++k) {
+            const float s = (1.8f * rng.next() - 0.9f) * v.half, t = (1.8f * rng.next() - 0.9f) * v.half;
+            const glm::vec2 ab = texelRayInterval(v, s, t);
+            const glm::vec3 base = v.origin + s * v.right + t * v.up;
+            const bool some = ab.x <= ab.y;
+            (some ? intervals : empty) += 1;
+            for (int q = 0; q <= 100; ++q) {
+                const float z = v.zNear + (v.zFar - v.zNear) * static_cast<float>(q) / 100.0f;
+                const float delta = 1e-3f * std::max(1.0f, v.zFar - v.zNear);
+                if (std::abs(z - ab.x) < delta || std::abs(z - ab.y) < delta) continue;
+                EXPECT_EQ(v.contains(base + z * v.direction), some && z >= ab.x && z <= ab.y) << i << " " << k << " z " << z;
+            }
+        }
+    }
+    // Both kinds occur (a photon's surface at a grazing angle to w shuts part of the square).
+    std::printf("texel rays: %d intervals, %d empty\n", intervals, empty);
+    EXPECT_GT(intervals, 3000);
+    EXPECT_GT(empty, 0);
+}
+
+TEST(PhotonSplatDepthRays, TracedMapsHoldTheFirstSurfaceInTheirTiles) {
+    // A 40 m floor at y = 0 and a 0.5 x 1 m board at y = 0.5 over x in [0, 0.5]. Two bundles in an atlas
+    // of three tiles per row, 8 x 8 texels, h = 0.4: bundle 0 looks down from (0, 1, 0) on a ceiling
+    // (the board under half its texels at depth 0.5, the floor at 1); bundle 1 looks up from the floor at
+    // (0.2, 0, 0): the floor lies on its near plane but behind its emitter plane, so only the board's
+    // underside (depth 0.5) is found, and the open sky elsewhere leaves 1. The third tile holds no map.
+    Scene scene = testscenes::planeUnderOrthoCamera(kRho, 4.0f);
+    Mesh board;
+    board.name = "board";
+    testscenes::addQuad(board, {0.25f, 0.5f, 0.0f}, {0.0f, 0.0f, 1.0f}, {0.5f, 0.0f, 0.0f});
+    testscenes::addObject(scene, board, scene.materials[0]);
+    ASSERT_TRUE(finalizeScene(scene).ok());
+    auto caster = RayCaster::create(scene, 0.0f, GeometryFilter::All);
+    ASSERT_TRUE(caster.ok());
+    const glm::vec3 lo(-20.0f, -1.0f, -20.0f), hi(20.0f, 2.0f, 20.0f);
+    const glm::vec3 down(0.0f, -1.0f, 0.0f), up(0.0f, 1.0f, 0.0f);
+    const std::vector<BundleVolume> volumes{volumeAlong({0.0f, 1.0f, 0.0f}, down, down, 0.4f, lo, hi),
+                                            volumeAlong({0.2f, 0.0f, 0.0f}, up, up, 0.4f, lo, hi)};
+    constexpr int kRes = 8, kPerRow = 3;
+    std::vector<float> atlas(static_cast<size_t>(kPerRow * kRes * kRes), -1.0f);
+    traceDepthMaps(*caster, volumes, kRes, kPerRow, atlas);
+    int board0 = 0, board1 = 0;
+    for (int tile = 0; tile < kPerRow; ++tile)
+        for (int j = 0; j < kRes; ++j)
+            for (int i = 0; i < kRes; ++i) {
+                const float stored = atlas[static_cast<size_t>(j * kPerRow * kRes + tile * kRes + i)];
+                if (tile == 2) {
+                    EXPECT_EQ(stored, 1.0f) << i << " " << j;
+                    continue;
+                }
+                const BundleVolume& v = volumes[static_cast<size_t>(tile)];
+                const float s = ((i + 0.5f) / kRes * 2.0f - 1.0f) * v.half, t = ((j + 0.5f) / kRes * 2.0f - 1.0f) * v.half;
+                const glm::vec3 x = v.origin + s * v.right + t * v.up;
+                const bool onBoard = x.x > 0.0f && x.x < 0.5f && std::abs(x.z) < 0.5f;
+                const float depth = onBoard ? 0.5f : (tile == 0 ? 1.0f : -1.0f);  // -1: nothing
+                const float expected = depth < 0.0f ? 1.0f : (depth - v.zNear) / (v.zFar - v.zNear);
+                EXPECT_NEAR(stored, expected, 1e-5f) << "tile " << tile << " texel " << i << " " << j;
+                (tile == 0 ? board0 : board1) += onBoard ? 1 : 0;
+            }
+    EXPECT_EQ(board0, 32);  // x = 0 splits bundle 0's square in half
+    EXPECT_GT(board1, 0);
 }

@@ -26,6 +26,7 @@
 #include "gpu/Context.h"
 #include "reference/Rng.h"
 #include "reference/Sampling.h"
+#include "techniques/photon_splat/DepthRays.h"
 #include "techniques/photon_splat/splat_shared.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -79,8 +80,8 @@ void PhotonSplatTechnique::visitSettings(SettingsVisitor& v) {
     v.field("mapSize", m_mapSize, "bundle width 2h, metres; 0 = a twentieth of the scene diagonal", 0.0f, 1.0e6f);
     v.field("mapDepth", m_mapDepth, "bundle depth D past its near plane, metres; 0 = past the scene's bounding box", 0.0f, 1.0e6f);
     v.field("stepBack", m_stepBack, "step back b from the photon ray's hit, metres (the near plane then lies parallel to the hit surface); 0 = the hit distance d: the bundle starts at its photon", 0.0f, 1.0e6f);
-    v.field("depthMaps", m_depthMaps, "how the bundles' depth maps are made: raster (a multi-draw into the atlas's tiles, the document's) or compute (the same maps rasterised in a compute pass: faster on llvmpipe, the default there)", kDepthMaps,
-            PerProfile<std::string_view>{"compute", "raster"});
+    v.field("depthMaps", m_depthMaps, "how the bundles' depth maps are made: raster (a multi-draw into the atlas's tiles, the document's), compute (the same maps rasterised in a compute pass) or rays (a ray per texel centre traced on the CPU: the same maps, the fastest on llvmpipe, the default there)", kDepthMaps,
+            PerProfile<std::string_view>{"rays", "raster"});
     v.field("mapResolution", m_mapResolution, "texels per side of each bundle's depth map (document: 4 and 32 tested)", 4, 32);
     v.field("depthTolerance", m_depthTolerance, "tolerant depth test: a receiver whose plane lies up to this far behind the stored depth at the texel's centre is lit, metres; 0 = 1/20 texel", 0.0f, 1.0e6f);
     v.field("filter", m_filter, "splat weight over the cross-section: gaussian (sigma = h/2), tent, box (document Fig. 6)", kFilters);
@@ -131,27 +132,36 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     m_tiles.x = std::min(maxTiles, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(capacity)))));
     m_tiles.y = std::min(maxTiles, (capacity + m_tiles.x - 1) / m_tiles.x);
     gl::TextureDesc maps;
-    maps.format = computeMaps ? GL_R32F : GL_DEPTH_COMPONENT32F;  // read as .r by the passes after either way
+    maps.format = m_depthMaps != "raster" ? GL_R32F : GL_DEPTH_COMPONENT32F;  // read as .r by the passes after either way
     maps.width = m_tiles.x * r;
     maps.height = m_tiles.y * r;
     maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
     m_maps = gl::Texture::create("photon-splat.depthAtlas", maps);
     if (computeMaps) {
         m_mapsUint = gl::Texture::createView("photon-splat.depthAtlasUint", m_maps, GL_R32UI);
+    } else if (m_depthMaps == "rays") {
+        m_tracedAtlas.assign(static_cast<size_t>(maps.width) * static_cast<size_t>(maps.height), 1.0f);  // the largest, once (soak)
+        const float one = 1.0f;
+        glClearTexImage(m_maps.id(), 0, GL_RED, GL_FLOAT, &one);
+        m_tracedRows = 0;
     } else {
         m_mapFbo = gl::Framebuffer::create("photon-splat.mapFbo");
         m_mapFbo.attach(GL_DEPTH_ATTACHMENT, m_maps);
         m_mapFbo.setDrawBuffers(0);
         BOUNCE_CHECK(m_mapFbo.complete(), "photon-splat depth atlas framebuffer");
     }
-    // The scene's triangles in clusters, drawn per bundle by one multi-draw per batch.
-    m_clusters = photonsplat::ClusterSet::build(ctx.scene, kClusterTriangles);
-    const std::vector<uint32_t>& indices = m_clusters.indices();
-    m_clusterIndices = gl::Buffer::create("photon-splat.clusterIndices", std::max<size_t>(indices.size(), 1) * sizeof(uint32_t),
-                                          indices.empty() ? nullptr : indices.data(), 0);
+    // The scene's triangles in clusters, drawn per bundle by one multi-draw per batch (raster) or read
+    // by the compute pass; traced maps need none.
+    m_clusters = photonsplat::ClusterSet{};
     m_drawCapacity = 0;
-    m_depthVao = gl::VertexArray::create("photon-splat.depthVao");
-    glVertexArrayElementBuffer(m_depthVao.id(), m_clusterIndices.id());
+    if (m_depthMaps != "rays") {
+        m_clusters = photonsplat::ClusterSet::build(ctx.scene, kClusterTriangles);
+        const std::vector<uint32_t>& indices = m_clusters.indices();
+        m_clusterIndices = gl::Buffer::create("photon-splat.clusterIndices", std::max<size_t>(indices.size(), 1) * sizeof(uint32_t),
+                                              indices.empty() ? nullptr : indices.data(), 0);
+        m_depthVao = gl::VertexArray::create("photon-splat.depthVao");
+        glVertexArrayElementBuffer(m_depthVao.id(), m_clusterIndices.id());
+    }
     m_accum = gl::Texture::create2D("photon-splat.accumulation", ctx.size.x, ctx.size.y, GL_RGBA32F);
     m_stats = gl::Texture::create2D("photon-splat.overlap", ctx.size.x, ctx.size.y, GL_RGBA32F);
     m_blurTemp = gl::Texture::create2D("photon-splat.blur", ctx.size.x, ctx.size.y, GL_RGBA32F);
@@ -191,7 +201,7 @@ void PhotonSplatTechnique::updateGeometry(FrameContext& ctx) {
         m_caster.emplace(std::move(*caster));
         m_casterTime = ctx.time;
     }
-    m_clusters.update(ctx.scene, ctx.time);
+    if (m_depthMaps != "rays") m_clusters.update(ctx.scene, ctx.time);
 }
 
 std::vector<photonsplat::Photon> PhotonSplatTechnique::rsmPhotons(FrameContext& ctx, uint64_t seed) {
@@ -288,7 +298,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     const float tolerance = depthTolerance();
     const int tiles = m_tiles.x * m_tiles.y;
     int batches = 0;
-    double clusterDraws = 0.0, cullMs = 0.0;
+    double clusterDraws = 0.0, cullMs = 0.0, traceMs = 0.0, tracedRays = 0.0;
     std::vector<uint32_t>& kept = m_cull.kept;
     std::vector<glm::uvec2>& pairs = m_cull.pairs;  // (cluster, bundle)
     for (int first = 0; first < count; first += tiles, ++batches) {
@@ -298,6 +308,20 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
             // Cull: per bundle, the clusters whose box meets its volume (CPU); then the pairs as
             // draws (raster) or as workgroups (compute).
             const auto t0 = std::chrono::steady_clock::now();
+            if (m_depthMaps == "rays") {
+                const std::span<const photonsplat::BundleVolume> volumes(m_volumes.data() + first, static_cast<size_t>(n));
+                const int rows = (n + m_tiles.x - 1) / m_tiles.x * m_mapResolution;
+                const int width = m_tiles.x * m_mapResolution;
+                tracedRays += static_cast<double>(photonsplat::traceDepthMaps(*m_caster, volumes, m_mapResolution, m_tiles.x,
+                                            std::span(m_tracedAtlas.data(), static_cast<size_t>(rows) * static_cast<size_t>(width))));
+                traceMs += msSince(t0);
+                glTextureSubImage2D(m_maps.id(), 0, 0, 0, width, rows, GL_RED, GL_FLOAT, m_tracedAtlas.data());
+                if (m_tracedRows > rows) {  // an earlier batch's maps below this one's: no map (as the passes clear)
+                    const float one = 1.0f;
+                    glClearTexSubImage(m_maps.id(), 0, 0, rows, 0, width, m_tracedRows - rows, 1, GL_RED, GL_FLOAT, &one);
+                }
+                m_tracedRows = rows;
+            } else {
             const bool compute = m_depthMaps == "compute";
             std::vector<glm::uvec4>& work = m_cull.rasterPairs;  // compute: the pairs as the workgroups read them
             pairs.clear();
@@ -324,6 +348,7 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
                 buildDraws(pairs);
                 cullMs += msSince(t0);
                 renderMapsByRaster(ctx, first);
+            }
             }
         }
         const bool useRanges = m_estimate == "flux";
@@ -374,8 +399,13 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
     }
     ctx.counters["depthMapBatches"] = static_cast<double>(batches);
     ctx.counters["depthMapTexels"] = static_cast<double>(count) * m_mapResolution * m_mapResolution;
-    ctx.counters["clusterDraws"] = clusterDraws;
-    ctx.counters["cullMs"] = cullMs;
+    if (m_depthMaps == "rays") {
+        ctx.counters["traceMs"] = traceMs;
+        ctx.counters["tracedRays"] = tracedRays;
+    } else {
+        ctx.counters["clusterDraws"] = clusterDraws;
+        ctx.counters["cullMs"] = cullMs;
+    }
     ctx.counters["bundleHalfSize"] = m_half;
     ctx.counters["bundleBufferBytes"] = static_cast<double>(m_bundleBuffer.size());
     ctx.counters["depthAtlasBytes"] = static_cast<double>(gl::textureStorageBytes(m_maps.desc()));

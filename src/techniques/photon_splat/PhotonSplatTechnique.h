@@ -42,7 +42,7 @@ public:
     static constexpr std::array<std::string_view, 2> kEstimates{"flux", "normalized"};
     static constexpr std::array<std::string_view, 4> kDebugViews{"none", "overlap", "accumulation", "grid"};
     static constexpr std::array<std::string_view, 2> kInjections{"rays", "rsm"};
-    static constexpr std::array<std::string_view, 2> kDepthMaps{"raster", "compute"};
+    static constexpr std::array<std::string_view, 3> kDepthMaps{"raster", "compute", "rays"};
 
     // For tests: the photons and bundles of the last frame.
     const std::vector<photonsplat::Photon>& photons() const { return m_photonList; }
@@ -65,7 +65,7 @@ private:
 
     // Settings (docs/techniques/photon-splat.md gives the sources of the defaults).
     std::string m_injection{"rays"};
-    std::string m_depthMaps{"compute"};  // a device-profile default: raster on a GPU
+    std::string m_depthMaps{"rays"};  // a device-profile default: raster on a GPU
     int m_rsmSize = 256;
     int m_vplGrid = 32;
     int m_photonCount = 16384;
@@ -121,6 +121,8 @@ private:
     photonsplat::ClusterSet m_clusters;
     gl::Buffer m_clusterIndices, m_drawCommands, m_drawData;
     size_t m_drawCapacity = 0;  // commands the two draw buffers hold
+    std::vector<float> m_tracedAtlas;  // depthMaps=rays: the atlas's rows, traced on the CPU
+    int m_tracedRows = 0;              // texel rows of the atlas the last upload wrote
     gl::Buffer m_rasterPairs;   // depthMaps=compute: CullScratch::rasterPairs
     size_t m_rasterCapacity = 0;
     gl::VertexArray m_depthVao;
