@@ -23,7 +23,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import record  # noqa: E402
 
-COUNTERS = {"photon-splat": ["clusterDraws", "cullMs", "bundles"],
+COUNTERS = {"photon-splat": ["clusterDraws", "cullMs", "traceMs", "tracedRays", "bundles"],
             "area-light": ["raysCast", "raysReused", "raysCulled", "gatherFragments", "renderedFraction/level-0"],
             "isr": ["vpls"]}
 
