@@ -2,7 +2,8 @@
 """The measuring half of scripts/gpu-check.sh (issue 29; docs/gpu.md "GPU check"): on the machine's
 GPU, the interactive benchmark's sides and the fidelity survey at 1080p, and every technique's image on
 the GPU against the same image on llvmpipe (Mesa's surfaceless platform, which a GPU machine with Mesa
-installed also has). Writes bench/results/gpu-<date>.json (bench/record.py's envelope) naming the GPU,
+installed also has), and each value of the profile choices made without a GPU (CHOICES) timed on
+courtyard. Writes bench/results/gpu-<date>.json (bench/record.py's envelope) naming the GPU,
 its driver and EGL device; it feeds no README table.
 
 Usage: bench/gpu_check.py BOUNCE --info INFO_JSON --tests TESTS_JSON [--reduced] [--budget SEC] [--out FILE]
@@ -80,6 +81,33 @@ def run_interactive(bounce, size, frames, sides, clock, share):
             ratios[key] = out[a]["frameMs"]["median"] / out[b]["frameMs"]["median"]
     return {"scene": interactive.SCENE, "size": size, "frames": frames, "sides": out, "ratios": ratios,
             "skipped": skipped}
+
+
+# Settings whose default differs between the llvmpipe and gpu profiles and whose GPU value was chosen
+# without a GPU: each value timed on the large scene (docs/gpu.md "Device profiles").
+CHOICES = [("photon-splat", "depthMaps", ["raster", "compute", "rays"], ["light=sun"]),
+           ("photon-splat", "depthMaps", ["raster", "compute", "rays"], ["light=sky"])]
+
+
+def run_choices(bounce, size, frames, params, clock, share):
+    out, skipped = [], []
+    stop = time.monotonic() + share
+    for technique, setting, values, scene_params in CHOICES:
+        row = {"technique": technique, "setting": setting, "sceneParams": scene_params + params, "values": {}}
+        for value in values:
+            if time.monotonic() > stop or clock.left() <= 0:
+                skipped.append(f"{technique}.{setting}={value} {' '.join(scene_params)}")
+                continue
+            try:
+                r, cmd = render(bounce, "courtyard", technique, size, frames, {setting: value}, scene_params + params)
+            except subprocess.CalledProcessError as e:
+                row["values"][value] = {"error": e.stderr.decode().strip().splitlines()[-1:]}
+                continue
+            times = [f["cpu_ms"] for f in later(r)]
+            row["values"][value] = {"command": cmd, "frameMs": summary(times)}
+            print(f"choice {technique}.{setting}={value:8s} {' '.join(scene_params):10s} {summary(times)['median']:8.2f} ms", flush=True)
+        out.append(row)
+    return {"scene": "courtyard", "size": size, "frames": frames, "rows": out, "skipped": skipped}
 
 
 def run_fidelity(bounce, size, spp, scenes, techniques, clock, share):
@@ -195,11 +223,13 @@ def main():
     if reduced:
         sides = {k: interactive.SIDES[k] for k in ("rsm", "isr")}
         rec["interactive"] = run_interactive(bounce, "96x54", 2, sides, clock, budget * 0.3)
+        rec["choices"] = run_choices(bounce, "64x64", 2, ["triangles=2128"], clock, budget * 0.1)
         rec["fidelity"] = run_fidelity(bounce, "64x36", 16, ["cornell-box"], ["rsm", "isr"], clock, budget * 0.3)
         rec["agreement"] = run_agreement(bounce, ["ambient", "rsm"], clock, budget * 0.3)
     else:
         rec["interactive"] = run_interactive(bounce, FULL_HD, 4, interactive.SIDES, clock, budget * 0.3)
-        rec["fidelity"] = run_fidelity(bounce, FULL_HD, 64, FIDELITY_SCENES, None, clock, budget * 0.4)
+        rec["choices"] = run_choices(bounce, FULL_HD, 4, [], clock, budget * 0.1)
+        rec["fidelity"] = run_fidelity(bounce, FULL_HD, 64, FIDELITY_SCENES, None, clock, budget * 0.35)
         rec["agreement"] = run_agreement(bounce, None, clock, max(clock.left(), 0))
     if out_file:
         with open(out_file, "w") as f:

@@ -49,13 +49,13 @@ def splat(bounce, tmp, scene, settings, frames=3):
     with open(stats) as f:
         rec = json.load(f)
     c = rec["frames"][-1]["counters"]
-    # CPU stages (injection, bundle rays, culling) are counters in ms; GPU stages are timers.
+    # CPU stages (injection, bundle rays, culling or traced depth maps) are counters in ms; GPU stages are timers.
     ms = rec["median_ms"]
     keys = ("bundles", "photonsStored", "photonsStratified", "photonBytes", "gridBytes", "bundleHalfSize", "overlapMean",
             "overlapMax", "overlapPixels", "clusterDraws")
     return out, {"frame_ms": ms["frame"], "depth_maps_ms": ms.get("photon-splat/depth-maps", 0.0),
                  "splat_ms": ms.get("photon-splat/splat", 0.0),
-                 "cpu_ms": c.get("injectMs", 0.0) + c.get("stratifyMs", 0.0) + c.get("bundleMs", 0.0) + c.get("cullMs", 0.0),
+                 "cpu_ms": c.get("injectMs", 0.0) + c.get("stratifyMs", 0.0) + c.get("bundleMs", 0.0) + c.get("cullMs", 0.0) + c.get("traceMs", 0.0),
                  **{k: c.get(k, 0) for k in keys}, "command": " ".join(cmd[1:])}
 
 

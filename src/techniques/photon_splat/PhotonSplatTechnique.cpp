@@ -6,7 +6,8 @@
 //  3. bundles (CPU, §3.3, Fig. 4): a ray per photon to its hit, the step back, the volume
 //     (BundleVolume), the clusters of the scene that meet it (ClusterSet).
 //  4. depth-maps: one r x r tile of a depth atlas per bundle, one multi-draw per batch (depth.vert),
-//     or the same tiles rasterised in a compute pass (depthMaps=compute, llvmpipe: depth_raster.comp).
+//     the same tiles rasterised in a compute pass (depthMaps=compute: depth_raster.comp), or traced on
+//     the CPU, a ray per texel centre (depthMaps=rays, llvmpipe's default: DepthRays).
 //  5. hit-ranges + splat (§3.3/§4.3): each volume's back faces; per pixel the tolerant depth test,
 //     the filter weight, the Lambert splat, added with the weight in alpha (splat.vert/.frag).
 //  6. resolve (§3.4/§4.4): the flux estimate, or the document's normalisation; debug views.
@@ -16,7 +17,7 @@
 //  - b = d by default (bundle from its photon) and D past the scene's box; b < d tilts the near plane.
 //  - no bundle ray starts behind its photon's surface; photons whose ray escapes keep their bundle.
 //  - the depth test uses the receiver's plane at the texel centre; maps in an atlas, culled clusters;
-//    on llvmpipe the maps are rasterised in a compute pass.
+//    on llvmpipe the maps are traced on the CPU (the same first surfaces).
 //  - photons from emissive surfaces and textured area lights too; 16384 photons, blur 5 by default.
 // References: seed 004 (shared/seeds), spec shared/specs/photon-splatting-orthographic-bundles.md.
 #include "techniques/photon_splat/PhotonSplatTechnique.h"
