@@ -133,7 +133,7 @@ def photon_splat_table(rec, path):
             lines.append(f"| photon-map, {k} | {n} | {med_of(rows, 'render_ms'):.0f} | {q(rows, 'energy'):.3f} | {q(rows, 'relMse'):.4f} | "
                          f"{q(rows, 'flipLdr'):.3f} | {q(rows, 'rmsSum8'):.1f} | — | — |")
         m5 = e["mapResolution"]
-        lines += ["", f"M5 depth maps 4² vs 32² (16384 photons): depth-maps {med_of(m5['4'], 'depth_maps_ms'):.0f} vs "
+        lines += ["", f"M5 depth maps 4² vs 32² (16384 photons): depth-maps (GPU, and the CPU's trace on llvmpipe) {med_of(m5['4'], 'depth_maps_ms'):.0f} vs "
                   f"{med_of(m5['32'], 'depth_maps_ms'):.0f} ms, splat {med_of(m5['4'], 'splat_ms'):.0f} vs {med_of(m5['32'], 'splat_ms'):.0f} ms, "
                   f"frame {med_of(m5['4'], 'frame_ms'):.0f} vs {med_of(m5['32'], 'frame_ms'):.0f} ms, relMSE {q(m5['4'], 'relMse'):.4f} vs "
                   f"{q(m5['32'], 'relMse'):.4f} (document, 5.3.1: \"Since we are dealing with thousands of light sources, even a slight "

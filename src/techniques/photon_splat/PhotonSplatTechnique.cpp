@@ -306,50 +306,40 @@ void PhotonSplatTechnique::renderIndirect(FrameContext& ctx, const gl::Texture& 
         const int n = std::min(tiles, count - first);
         {
             auto s = ctx.timers.scope("depth-maps");
-            // Cull: per bundle, the clusters whose box meets its volume (CPU); then the pairs as
-            // draws (raster) or as workgroups (compute).
             const auto t0 = std::chrono::steady_clock::now();
             if (m_depthMaps == "rays") {
-                const std::span<const photonsplat::BundleVolume> volumes(m_volumes.data() + first, static_cast<size_t>(n));
-                const int rows = (n + m_tiles.x - 1) / m_tiles.x * m_mapResolution;
-                const int width = m_tiles.x * m_mapResolution;
-                tracedRays += static_cast<double>(photonsplat::traceDepthMaps(*m_caster, volumes, m_mapResolution, m_tiles.x,
-                                            std::span(m_tracedAtlas.data(), static_cast<size_t>(rows) * static_cast<size_t>(width))));
+                tracedRays += static_cast<double>(traceMaps(first, n));
                 traceMs += msSince(t0);
-                glTextureSubImage2D(m_maps.id(), 0, 0, 0, width, rows, GL_RED, GL_FLOAT, m_tracedAtlas.data());
-                if (m_tracedRows > rows) {  // an earlier batch's maps below this one's: no map (as the passes clear)
-                    const float one = 1.0f;
-                    glClearTexSubImage(m_maps.id(), 0, 0, rows, 0, width, m_tracedRows - rows, 1, GL_RED, GL_FLOAT, &one);
-                }
-                m_tracedRows = rows;
             } else {
-            const bool compute = m_depthMaps == "compute";
-            std::vector<glm::uvec4>& work = m_cull.rasterPairs;  // compute: the pairs as the workgroups read them
-            pairs.clear();
-            work.clear();
-            for (int i = 0; i < n; ++i) {
-                kept.clear();
-                if (m_cullClusters) m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
-                else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) kept.push_back(c);
-                const auto bundle = static_cast<uint32_t>(first + i);
-                for (uint32_t c : kept) {
-                    if (!compute) {
-                        pairs.push_back({c, bundle});
-                        continue;
+                // Cull: per bundle, the clusters whose box meets its volume (CPU); then the pairs as
+                // draws (raster) or as workgroups (compute).
+                const bool compute = m_depthMaps == "compute";
+                std::vector<glm::uvec4>& work = m_cull.rasterPairs;  // compute: the pairs as the workgroups read them
+                pairs.clear();
+                work.clear();
+                for (int i = 0; i < n; ++i) {
+                    kept.clear();
+                    if (m_cullClusters) m_clusters.cull(m_volumes[static_cast<size_t>(first + i)], kept);
+                    else for (uint32_t c = 0; c < m_clusters.clusters().size(); ++c) kept.push_back(c);
+                    const auto bundle = static_cast<uint32_t>(first + i);
+                    for (uint32_t c : kept) {
+                        if (!compute) {
+                            pairs.push_back({c, bundle});
+                            continue;
+                        }
+                        const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
+                        work.push_back({bundle, cl.object, cl.firstIndex, cl.indexCount});
                     }
-                    const photonsplat::ClusterSet::Cluster& cl = m_clusters.clusters()[c];
-                    work.push_back({bundle, cl.object, cl.firstIndex, cl.indexCount});
                 }
-            }
-            clusterDraws += static_cast<double>(compute ? work.size() : pairs.size());
-            if (compute) {
-                cullMs += msSince(t0);
-                renderMapsInCompute(ctx, first, work);
-            } else {
-                buildDraws(pairs);
-                cullMs += msSince(t0);
-                renderMapsByRaster(ctx, first);
-            }
+                clusterDraws += static_cast<double>(compute ? work.size() : pairs.size());
+                if (compute) {
+                    cullMs += msSince(t0);
+                    renderMapsInCompute(ctx, first, work);
+                } else {
+                    buildDraws(pairs);
+                    cullMs += msSince(t0);
+                    renderMapsByRaster(ctx, first);
+                }
             }
         }
         const bool useRanges = m_estimate == "flux";
@@ -550,6 +540,23 @@ void PhotonSplatTechnique::renderMapsByRaster(FrameContext& ctx, int first) {
 }
 
 // depthMaps=compute: the same tiles by depth_raster.comp, a workgroup per (bundle, cluster) pair.
+// depthMaps=rays: the n maps from bundle `first` traced on the CPU (DepthRays) into the atlas's rows,
+// uploaded; rows an earlier batch wrote below them are cleared (no map, as the other paths clear).
+size_t PhotonSplatTechnique::traceMaps(int first, int n) {
+    const std::span<const photonsplat::BundleVolume> volumes(m_volumes.data() + first, static_cast<size_t>(n));
+    const int rows = (n + m_tiles.x - 1) / m_tiles.x * m_mapResolution;
+    const int width = m_tiles.x * m_mapResolution;
+    const size_t rays = photonsplat::traceDepthMaps(*m_caster, volumes, m_mapResolution, m_tiles.x,
+                                                    std::span(m_tracedAtlas.data(), static_cast<size_t>(rows) * static_cast<size_t>(width)));
+    glTextureSubImage2D(m_maps.id(), 0, 0, 0, width, rows, GL_RED, GL_FLOAT, m_tracedAtlas.data());
+    if (m_tracedRows > rows) {
+        const float one = 1.0f;
+        glClearTexSubImage(m_maps.id(), 0, 0, rows, 0, width, m_tracedRows - rows, 1, GL_RED, GL_FLOAT, &one);
+    }
+    m_tracedRows = rows;
+    return rays;
+}
+
 void PhotonSplatTechnique::renderMapsInCompute(FrameContext& ctx, int first, const std::vector<glm::uvec4>& work) {
     const float one = 1.0f;
     // Shader image writes of the previous batch, then this clear (GL 4.5 7.13.2: a texture update).

@@ -62,6 +62,7 @@ private:
     void buildDraws(const std::vector<glm::uvec2>& pairs);
     void renderMapsByRaster(FrameContext& ctx, int first);
     void renderMapsInCompute(FrameContext& ctx, int first, const std::vector<glm::uvec4>& work);
+    size_t traceMaps(int first, int n);  // depthMaps=rays; returns the rays traced
 
     // Settings (docs/techniques/photon-splat.md gives the sources of the defaults).
     std::string m_injection{"rays"};
