@@ -53,11 +53,18 @@ vec3 shadowCascadeUvz(LightGpu L, vec4 k, vec3 x) {
 //   cascade times sin(incidence) (the normal offset, scaled by the texel's world size);
 // - each tap compared at the receiver's own plane's depth there (receiver-plane depth bias: the
 //   plane through x with normal n, projected into the map, gives dz/duv; slope-scaled bias computed
-//   from the normal, so a planar receiver never shadows itself at any kernel radius), less that
-//   slope over one texel for the bilinear compare's 2 x 2 footprint; slopes past kMaxReceiverSlope
-//   (grazing, where cos(theta) leaves almost no light) are clamped. Directional lights only: spot
-//   lights keep the map's polygon offset (render/LightSet.cpp says why).
+//   from the normal, so a planar receiver never shadows itself at any kernel radius), less the
+//   plane's fall to the lowest of the four texel centres the bilinear compare reads (known from the
+//   lookup's position in its texel: on average half a texel's slope) plus kBilinearSlackMargin of
+//   one texel's slope; slopes past kMaxReceiverSlope (grazing, where cos(theta) leaves almost no
+//   light) are clamped. Directional lights only: spot lights keep the map's polygon offset
+//   (render/LightSet.cpp says why);
+// - the taps weighted by a tent, (r + 1 - |i|)(r + 1 - |j|): with the bilinear compares a kernel that
+//   falls off smoothly, narrower than the box of the same reach (the reference's sun is a delta light).
 const float kMaxReceiverSlope = 10.0;  // tan(84 degrees): depth per lateral distance, bounce's choice
+// Margin of the bilinear slack, in one texel's slope: the map's depths are rounded and the normal is
+// interpolated; with none the grazing walls of atrium show acne (docs/techniques/direct.md).
+const float kBilinearSlackMargin = 0.25;
 float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCube, vec3 x, vec3 n) {
     int kind = int(L.edgeU.w + 0.5);
     if (kind == 0) return 1.0;
@@ -100,7 +107,11 @@ float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCub
     vec2 slope = abs(det) > 1e-20 ? vec2(a.z * b.y - b.z * a.y, b.z * a.x - a.z * b.x) / det : vec2(0.0);
     // Directional maps only: spot maps keep the polygon offset (render/LightSet.cpp).
     slope = directional ? clamp(slope, vec2(-maxSlope), vec2(maxSlope)) : vec2(0.0);
-    float footprint = (abs(slope.x) + abs(slope.y)) * texel;
+    // The lookup's position between the four texel centres the compare reads (the same for every
+    // tap: they are whole texels apart); the plane's lowest depth among them lies `slack` below.
+    vec2 within = fract(uvz.xy * size - 0.5);
+    vec2 fall = mix(-slope * (1.0 - within), slope * within, step(0.0, slope));
+    float slack = (fall.x + fall.y + kBilinearSlackMargin * (abs(slope.x) + abs(slope.y))) * texel;
     // The cascade's tile in the atlas (2 x 2 with cascades, render/ShadowCascades.h); taps stay inside it.
     float tiles = count > 1 ? 2.0 : 1.0;
     vec2 tile = vec2(float(cascade % 2), float(cascade / 2));
@@ -109,11 +120,12 @@ float shadowVisibilityFrom(LightGpu L, sampler2DShadow map2D, samplerCube mapCub
         for (int i = -radius; i <= radius; ++i) {
             vec2 offset = vec2(i, j) * texel;
             vec2 local = clamp(uvz.xy + offset, vec2(0.5 * texel), vec2(1.0 - 0.5 * texel));
-            float z = uvz.z + dot(slope, offset) - footprint;
-            sum += textureLod(map2D, vec3((tile + local) / tiles, z), 0.0);
+            float z = uvz.z + dot(slope, offset) - slack;
+            float weight = float(radius + 1 - abs(i)) * float(radius + 1 - abs(j));
+            sum += weight * textureLod(map2D, vec3((tile + local) / tiles, z), 0.0);
         }
-    float taps = float((2 * radius + 1) * (2 * radius + 1));
-    return sum / taps;
+    float weights = float((radius + 1) * (radius + 1)) * float((radius + 1) * (radius + 1));  // (sum of 1..r+1..1)^2
+    return sum / weights;
 }
 
 float shadowVisibility(LightGpu L, vec3 x, vec3 n) { return shadowVisibilityFrom(L, s_shadow, s_shadowCube, x, n); }
