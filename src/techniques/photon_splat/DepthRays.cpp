@@ -51,7 +51,7 @@ size_t traceDepthMaps(const RayCaster& caster, std::span<const BundleVolume> vol
     std::atomic<size_t> traced{0};
     auto traceTile = [&](size_t k) {
         const BundleVolume& v = volumes[k];
-        const float range = v.zFar - v.zNear;
+        const float range = std::max(v.zFar - v.zNear, std::numeric_limits<float>::min());  // a zero-depth map stores 0 or 1
         float* tile = atlas.data() + k / static_cast<size_t>(tilesPerRow) * r * row + k % static_cast<size_t>(tilesPerRow) * r;
         std::array<CastRay, kRaysPerCall> rays;
         std::array<float, kRaysPerCall> start, hits;  // local depth where each ray starts; its hit distance
