@@ -17,6 +17,26 @@ constexpr size_t kStreamChunk = 64;
 constexpr size_t kParallelThreshold = 4096;
 constexpr size_t kParallelGrain = 1024;
 
+// Closest hits of `rays` in Embree streams of kStreamChunk on the calling thread; visit(i, hit) gets ray
+// i's result.
+template <typename Visit>
+void intersectStreams(RTCScene scene, std::span<const CastRay> rays, Visit&& visit) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    std::array<RTCRayHit, kStreamChunk> stream;
+    for (size_t base = 0; base < rays.size(); base += kStreamChunk) {
+        const size_t n = std::min(kStreamChunk, rays.size() - base);
+        for (size_t i = 0; i < n; ++i) {
+            const CastRay& r = rays[base + i];
+            setRay(stream[i].ray, r.origin, r.direction, r.tMin, r.tMax);
+            stream[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            stream[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect1M(scene, &context, stream.data(), static_cast<unsigned>(n), sizeof(RTCRayHit));
+        for (size_t i = 0; i < n; ++i) visit(base + i, stream[i]);
+    }
+}
+
 }  // namespace
 
 Expected<RayCaster> RayCaster::create(const Scene& scene, float time, GeometryFilter filter) {
@@ -70,46 +90,19 @@ bool RayCaster::occluded(glm::vec3 from, glm::vec3 to) const {
 }
 
 void RayCaster::closestHitsChunk(std::span<const CastRay> rays, std::span<std::optional<RayHit>> results) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    std::array<RTCRayHit, kStreamChunk> stream;
-    for (size_t base = 0; base < rays.size(); base += kStreamChunk) {
-        const size_t n = std::min(kStreamChunk, rays.size() - base);
-        for (size_t i = 0; i < n; ++i) {
-            const CastRay& r = rays[base + i];
-            setRay(stream[i].ray, r.origin, r.direction, r.tMin, r.tMax);
-            stream[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            stream[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcIntersect1M(m_embree.handle(), &context, stream.data(), static_cast<unsigned>(n), sizeof(RTCRayHit));
-        for (size_t i = 0; i < n; ++i) {
-            const RTCRayHit& rh = stream[i];
-            if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-                results[base + i].reset();
-            else
-                results[base + i] = makeHit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar,
-                                            rays[base + i].direction);
-        }
-    }
+    intersectStreams(m_embree.handle(), rays, [&](size_t i, const RTCRayHit& rh) {
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            results[i].reset();
+        else
+            results[i] = makeHit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, rays[i].direction);
+    });
 }
 
 void RayCaster::closestDistances(std::span<const CastRay> rays, std::span<float> distances) const {
     BOUNCE_CHECK(rays.size() == distances.size(), "closestDistances: {} rays but {} results", rays.size(), distances.size());
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    std::array<RTCRayHit, kStreamChunk> stream;
-    for (size_t base = 0; base < rays.size(); base += kStreamChunk) {
-        const size_t n = std::min(kStreamChunk, rays.size() - base);
-        for (size_t i = 0; i < n; ++i) {
-            const CastRay& r = rays[base + i];
-            setRay(stream[i].ray, r.origin, r.direction, r.tMin, r.tMax);
-            stream[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            stream[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcIntersect1M(m_embree.handle(), &context, stream.data(), static_cast<unsigned>(n), sizeof(RTCRayHit));
-        for (size_t i = 0; i < n; ++i)
-            distances[base + i] = stream[i].hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity() : stream[i].ray.tfar;
-    }
+    intersectStreams(m_embree.handle(), rays, [&](size_t i, const RTCRayHit& rh) {
+        distances[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity() : rh.ray.tfar;
+    });
 }
 
 void RayCaster::occludedChunk(std::span<const Segment> segments, std::span<uint8_t> results) const {

@@ -272,6 +272,45 @@ BundleVolume volumeOfHit(const Photon& ph, float hitDistance, glm::vec3 hitNorma
     return bundleVolume(ph, b, vs);
 }
 
+// A random bundle for the culling and interval tests: its photon in [-2, 2]^3, the photon's normal and
+// ray uniform (the ray on the normal's side), the hit 1-2 m on a surface tilted at random, h in
+// [0.1, 0.5] m, D past the box [-4, 4]^3; even i from the photon, odd i stepped back 0.3 m from the hit
+// (a tilted near plane). Braced lists and one draw per statement: the draws' order is the same under
+// every compiler (function arguments and the operands of + are unsequenced: gcc and clang drew
+// different scenes).
+struct RandomBundle {
+    glm::vec3 photon{0.0f}, direction{0.0f};
+    Bundle bundle;
+    BundleVolume volume;
+};
+
+RandomBundle randomBundle(Rng& rng, int i) {
+    auto unit = [&] {
+        const float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    RandomBundle out;
+    out.photon = {4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f};
+    const glm::vec3 n = unit();
+    glm::vec3 w = unit();
+    if (glm::dot(n, w) < 0.0f) w = -w;
+    out.direction = w;
+    Photon ph;
+    ph.position = out.photon;
+    ph.normal = n;
+    ph.direction = w;
+    const float hitDistance = 1.0f + rng.next();
+    const glm::vec3 tilt = unit();
+    VolumeSettings vs;
+    vs.half = 0.1f + 0.4f * rng.next();
+    vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
+    vs.emitterOffset = 1e-3f;
+    vs.lo = glm::vec3(-4.0f);
+    vs.hi = glm::vec3(4.0f);
+    out.volume = volumeOfHit(ph, hitDistance, glm::normalize(-w + 0.8f * tilt), vs, out.bundle);
+    return out;
+}
+
 }  // namespace
 
 TEST(PhotonSplatBundles, TheVolumeAndItsCullingMatchDirectGeometry) {
@@ -379,32 +418,12 @@ TEST(PhotonSplatCull, NeverSeparatesABoxThatHoldsAPointOfTheVolume) {
     // The culled boxes' probe points draw from their own stream, so the bundles and boxes do not depend on
     // what the cull decided (a mutation then changes the count, not the scene).
     Rng probe(12, 0, 0);
-    const glm::vec3 lo(-4.0f), hi(4.0f);
     int culled = 0, boxes = 0;
     for (int i = 0; i < 200; ++i) {
-        auto unit = [&] {
-            const float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-            return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
-        };
-        // Braced lists and one draw per statement: the draws' order is the same under every compiler
-        // (function arguments and the operands of + are unsequenced: gcc and clang drew different scenes).
-        const glm::vec3 p{4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f};
-        glm::vec3 n = unit(), w = unit();
-        if (glm::dot(n, w) < 0.0f) w = -w;
-        Photon ph;
-        ph.position = p;
-        ph.normal = n;
-        ph.direction = w;
-        const float hitDistance = 1.0f + rng.next();
-        const glm::vec3 tilt = unit();
-        VolumeSettings vs;
-        vs.half = 0.1f + 0.4f * rng.next();
-        vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
-        vs.emitterOffset = 1e-3f;
-        vs.lo = lo;
-        vs.hi = hi;
-        Bundle b;
-        const BundleVolume v = volumeOfHit(ph, hitDistance, glm::normalize(-w + 0.8f * tilt), vs, b);
+        const RandomBundle rb = randomBundle(rng, i);
+        const glm::vec3 p = rb.photon, w = rb.direction;
+        const Bundle& b = rb.bundle;
+        const BundleVolume& v = rb.volume;
         for (int k = 0; k < 40; ++k) {
             // Boxes around the bundle: within 2.5 h of its axis, from 0.5 m behind the photon to 3 m on.
             const float h = v.half;
@@ -438,28 +457,7 @@ TEST(PhotonSplatDepthRays, TheTexelRaysIntervalIsTheVolumeAlongIt) {
     Rng rng(21, 0, 0);
     int intervals = 0, empty = 0;
     for (int i = 0; i < 200; ++i) {
-        auto unit = [&] {
-            const float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-            return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
-        };
-        const glm::vec3 p{4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f, 4.0f * rng.next() - 2.0f};
-        const glm::vec3 n = unit();
-        glm::vec3 w = unit();
-        if (glm::dot(n, w) < 0.0f) w = -w;
-        Photon ph;
-        ph.position = p;
-        ph.normal = n;
-        ph.direction = w;
-        const float hitDistance = 1.0f + rng.next();
-        const glm::vec3 tilt = unit();
-        VolumeSettings vs;
-        vs.half = 0.1f + 0.4f * rng.next();
-        vs.stepBack = i % 2 == 0 ? 1e30f : 0.3f;
-        vs.emitterOffset = 1e-3f;
-        vs.lo = glm::vec3(-4.0f);
-        vs.hi = glm::vec3(4.0f);
-        Bundle b;
-        const BundleVolume v = volumeOfHit(ph, hitDistance, glm::normalize(-w + 0.8f * tilt), vs, b);
+        const BundleVolume v = randomBundle(rng, i).volume;
         for (int k = 0; k < 20; ++k) {
             const float s = (1.8f * rng.next() - 0.9f) * v.half, t = (1.8f * rng.next() - 0.9f) * v.half;
             const glm::vec2 ab = texelRayInterval(v, s, t);
