@@ -399,8 +399,8 @@ static std::vector<float> readAtlas(const gl::Texture& t) {
 
 TEST_F(PhotonSplatGpuTest, CulledDepthMapsEqualTheMapsOfEveryCluster) {
     // The CPU cull (ClusterSet::cull, mayOverlap) only drops (bundle, cluster) pairs whose every
-    // triangle depth.vert and depth_raster.comp clip (here depthMaps=compute; raster shares the cull): the depth atlas with it equals, bit for bit, the atlas with every
-    // cluster drawn into every bundle's map. The smallest courtyard (2,128 triangles: arcades, columns
+    // triangle depth.vert and depth_raster.comp clip (here depthMaps=compute; raster shares the cull):
+    // the depth atlas with it equals, bit for bit, the atlas with every cluster drawn into every bundle's map. The smallest courtyard (2,128 triangles: arcades, columns
     // and the alpha-masked foliage) under its sun, 500 photons; the cull must also have dropped draws.
     auto scene = loadScene("courtyard", {{"triangles", "2128"}});
     ASSERT_TRUE(scene.ok()) << scene.error().message;

@@ -12,6 +12,7 @@
 #include "techniques/photon_splat/splat_shared.h"
 
 layout(local_size_x = SPLAT_CLUSTER_TRIANGLES) in;
+#include "common/dispatch.glsl"
 
 struct SceneVertex { float px, py, pz, nx, ny, nz, u, v; };  // render/SceneGpu.cpp's Vertex (32 bytes)
 layout(std430, binding = BINDING_SSBO_TECH0) readonly buffer Bundles { BundleGpu b_bundles[]; };
@@ -48,7 +49,7 @@ Corner corner(BundleGpu b, mat4 worldFromObject, uint index) {
 float edge(vec2 a, vec2 b, vec2 x) { return (b.x - a.x) * (x.y - a.y) - (b.y - a.y) * (x.x - a.x); }
 
 void main() {
-    uint w = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+    uint w = linearGroup();
     if (w >= u_pairCount) return;
     uvec4 pair = p_pairs[w];
     uint t = gl_LocalInvocationID.x;

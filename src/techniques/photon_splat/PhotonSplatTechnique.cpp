@@ -25,6 +25,7 @@
 #include "core/Check.h"
 #include "gpu/Bindings.h"
 #include "gpu/Context.h"
+#include "gpu/DispatchGrid.h"
 #include "reference/Rng.h"
 #include "reference/Sampling.h"
 #include "techniques/photon_splat/DepthRays.h"
@@ -51,7 +52,6 @@ constexpr int kMaxAtlasTexels = 4096;          // depth atlas side limit, texels
 constexpr int kBundlePointsWidth = 256;        // texels per row of the bundle-points debug texture
 constexpr float kRangeMarginTexels = 4.0f;     // splat volume cut to the first hits' depths +- 4 texels (slopes to tan 76 degrees over a half texel diagonal... and then some)
 constexpr int kDepthClipPlanes = 7;
-constexpr size_t kMaxWorkgroupsPerDimension = 65535;  // GL 4.5's minimum MAX_COMPUTE_WORK_GROUP_COUNT (each axis)
 constexpr float kOverlapHeatMax = 64.0f;       // the overlap view's red: bundles per pixel (the defaults reach ~25 mean, ~80 at most)            // depth.vert's clip distances: tile (4), near, far, emitter
 
 template <size_t N>
@@ -113,10 +113,10 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     const int r = m_mapResolution;
     // Bundles per frame at most: photons times stored bounces, or one per VPL of a cube RSM.
     const int capacity = std::max(1, m_injection == "rsm" ? 6 * m_vplGrid * m_vplGrid : m_photonCount * m_bounces);
-    const bool computeMaps = m_depthMaps == "compute";  // the program of the other path is not built
+    const bool computeMaps = m_depthMaps == "compute";  // only the chosen path's program is built
     if (computeMaps) {
         BOUNCE_TRY(m_rasterProgram, gl::Program::build({"photon-splat.depthRaster", {{GL_COMPUTE_SHADER, "techniques/photon_splat/depth_raster.comp"}}}));
-    } else {
+    } else if (m_depthMaps == "raster") {
         BOUNCE_TRY(m_depthProgram, gl::Program::build({"photon-splat.depth", {{GL_VERTEX_SHADER, "techniques/photon_splat/depth.vert"},
                                                                              {GL_FRAGMENT_SHADER, "render/shadow_depth.frag"}}}));
     }
@@ -138,6 +138,13 @@ Expected<void> PhotonSplatTechnique::setup(const SetupContext& ctx) {
     maps.height = m_tiles.y * r;
     maps.minFilter = maps.magFilter = GL_NEAREST;  // a depth test per texel, no filtering
     m_maps = gl::Texture::create("photon-splat.depthAtlas", maps);
+    // A set-up again (another path) keeps nothing of the last one's path: the byte counters count what is.
+    m_mapsUint = {};
+    m_mapFbo = {};
+    m_clusterIndices = {};
+    m_depthVao = {};
+    m_tracedAtlas.clear();
+    m_tracedAtlas.shrink_to_fit();
     if (computeMaps) {
         m_mapsUint = gl::Texture::createView("photon-splat.depthAtlasUint", m_maps, GL_R32UI);
     } else if (m_depthMaps == "rays") {
@@ -579,11 +586,7 @@ void PhotonSplatTechnique::renderMapsInCompute(FrameContext& ctx, int first, con
     m_clusterIndices.bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_TECH3);
     ctx.sceneGpu.objects().bindBase(GL_SHADER_STORAGE_BUFFER, BINDING_SSBO_OBJECTS);
     m_mapsUint.bindImage(BINDING_IMG0, GL_READ_WRITE);
-    // GL 4.5 guarantees 65535 workgroups per dimension: rows of that many.
-    const size_t pairs = work.size();
-    const GLuint x = static_cast<GLuint>(std::min<size_t>(pairs, kMaxWorkgroupsPerDimension));
-    const GLuint y = static_cast<GLuint>((pairs + x - 1) / x);
-    glDispatchCompute(x, y, 1);
+    gl::dispatchGroupsLinear(work.size());  // a workgroup per pair, in rows within the device's limit
     // The tile ranges and the splat read the atlas through samplers.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
